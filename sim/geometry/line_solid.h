@@ -1,0 +1,31 @@
+#pragma once
+// The hand-over from swept volumes to the stock: a solid that can say where an
+// axis-parallel line runs inside it. The mdh-map samples every solid only
+// through this, so tools, swept volumes and fixtures all plug in the same way.
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace mdhd::geom {
+
+struct Interval {
+  double lo = 0.0;
+  double hi = 0.0;
+};
+
+struct Aabb {
+  glm::dvec3 lo{0.0};
+  glm::dvec3 hi{0.0};
+};
+
+class LineSolid {
+ public:
+  virtual ~LineSolid() = default;
+  // A box that contains the whole solid.
+  virtual Aabb bounds() const = 0;
+  // Appends to `out` the intervals of coordinate `axis` (0 x, 1 y, 2 z) where the line
+  // {p : p[(axis+1)%3] = u, p[(axis+2)%3] = v} lies inside the solid: sorted, disjoint.
+  virtual void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const = 0;
+};
+
+}  // namespace mdhd::geom
