@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Configures and builds one flavour of mdhd: scripts/build.sh [release|asan] [extra cmake args...]
+# release -> build/, asan -> build-asan/ (AddressSanitizer + UndefinedBehaviorSanitizer).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+flavour=${1:-release}
+shift || true
+case "$flavour" in
+  release) dir=build; flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo) ;;
+  asan) dir=build-asan; flags=(-DCMAKE_BUILD_TYPE=Debug -DMDHD_SANITIZE=ON -DMDHD_BENCH=OFF) ;;
+  *) echo "build.sh: unknown flavour '$flavour' (release|asan)" >&2; exit 2 ;;
+esac
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B "$dir" -DMDHD_WERROR=ON "${flags[@]}" "$@" >/dev/null
+cmake --build "$dir" -j "$jobs"
