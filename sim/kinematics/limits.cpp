@@ -1,0 +1,196 @@
+#include "sim/kinematics/limits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <vector>
+
+namespace mdhd::kin {
+namespace {
+
+constexpr int kMinSteps = 32;
+constexpr double kStepDegrees = 2.0;
+constexpr int kMaxSteps = 200000;
+constexpr int kRefineIterations = 64;  // 0.618^64 ~ 1e-13 of a sample interval
+
+struct Point {
+  double s = 0.0;
+  double v = 0.0;
+};
+
+// Violation of one joint's range by the value v, or 0 when inside: +1 above, -1 below.
+int side(const Limits& l, double v) {
+  if (v > l.max + kLimitSlack) return 1;
+  if (v < l.min - kLimitSlack) return -1;
+  return 0;
+}
+
+LimitViolation make(int joint, gcode::Axis axis, const Limits& l, int dir, double v) {
+  LimitViolation out;
+  out.joint = joint;
+  out.axis = axis;
+  out.limit = dir > 0 ? l.max : l.min;
+  out.value = v;
+  out.excess = std::abs(v - out.limit);
+  return out;
+}
+
+// A joint that moves linearly from a to b: exact.
+std::optional<LimitViolation> linearCheck(int joint, gcode::Axis axis, const Limits& l, double a,
+                                          double b) {
+  const int dirA = side(l, a);
+  const int dirB = side(l, b);
+  if (dirA == 0 && dirB == 0) return std::nullopt;
+  const int dir = dirA != 0 ? dirA : dirB;
+  // The worst is the end farther out on that side.
+  const bool endWorse = dir > 0 ? b > a : b < a;
+  LimitViolation out = make(joint, axis, l, dir, endWorse ? b : a);
+  out.worst_s = endWorse ? 1.0 : 0.0;
+  out.first_s = dirA != 0 ? 0.0 : std::clamp((out.limit - a) / (b - a), 0.0, 1.0);
+  return out;
+}
+
+// Golden-section search for the maximum of f on [a, b] (assumed unimodal there).
+Point goldenMax(const std::function<double(double)>& f, double a, double b) {
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double x1 = b - g * (b - a);
+  double x2 = a + g * (b - a);
+  double f1 = f(x1);
+  double f2 = f(x2);
+  for (int i = 0; i < kRefineIterations && b - a > 1e-15; ++i) {
+    if (f1 < f2) {
+      a = x1, x1 = x2, f1 = f2;
+      x2 = a + g * (b - a);
+      f2 = f(x2);
+    } else {
+      b = x2, x2 = x1, f2 = f1;
+      x1 = b - g * (b - a);
+      f1 = f(x1);
+    }
+  }
+  return f1 < f2 ? Point{x2, f2} : Point{x1, f1};
+}
+
+// The s values to sample a non-linear path at, sorted.
+std::vector<double> sampleParameters(const JointPath& path) {
+  double degrees = 0.0;
+  if (path.isArc()) degrees = std::abs(path.arcSweep()) * 180.0 / std::numbers::pi;
+  if (path.tcp()) {
+    const JointValues& a = path.startJoints();
+    const JointValues& b = path.endJoints();
+    for (int r : {gcode::kA, gcode::kB, gcode::kC})
+      degrees = std::max(degrees, std::abs(b[r] - a[r]));
+  }
+  const int n =
+      std::clamp(static_cast<int>(std::ceil(degrees / kStepDegrees)), kMinSteps, kMaxSteps);
+  std::vector<double> s;
+  s.reserve(static_cast<std::size_t>(n) + 8);
+  for (int i = 0; i <= n; ++i) s.push_back(static_cast<double>(i) / n);
+  if (path.isArc() && path.arcSweep() != 0.0) {
+    // Where the arc's coordinates peak: at the quarter angles (exact for a constant radius).
+    const double quarter = std::numbers::pi / 2.0;
+    const double a0 = path.arcStartAngle();
+    const double a1 = a0 + path.arcSweep();
+    const double lo = std::min(a0, a1);
+    const double hi = std::max(a0, a1);
+    const int count = std::min(
+        kMaxSteps, static_cast<int>(std::floor(hi / quarter) - std::ceil(lo / quarter)) + 1);
+    const double k0 = std::ceil(lo / quarter);
+    for (int k = 0; k < count; ++k) s.push_back(((k0 + k) * quarter - a0) / path.arcSweep());
+  }
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+// One joint, sampled: refine every local extreme, then find the first point outside.
+std::optional<LimitViolation> sampledCheck(const JointPath& path, int joint, gcode::Axis axis,
+                                           const Limits& l, const std::vector<double>& s,
+                                           const std::vector<double>& v) {
+  const auto f = [&](double t) { return path.at(t)[axis]; };
+  std::vector<Point> pts;
+  pts.reserve(s.size() + 16);
+  for (std::size_t i = 0; i < s.size(); ++i) pts.push_back({s[i], v[i]});
+  const std::size_t n = s.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double prev = i > 0 ? v[i - 1] : v[i];
+    const double next = i + 1 < n ? v[i + 1] : v[i];
+    const double a = s[i > 0 ? i - 1 : i];
+    const double b = s[i + 1 < n ? i + 1 : i];
+    if (b <= a) continue;
+    // Strict on one side so that plateaus (a joint that does not move) cost nothing.
+    if (v[i] >= prev && v[i] >= next && (v[i] > prev || v[i] > next)) {
+      pts.push_back(goldenMax(f, a, b));
+    } else if (v[i] <= prev && v[i] <= next && (v[i] < prev || v[i] < next)) {
+      Point p = goldenMax([&](double t) { return -f(t); }, a, b);
+      pts.push_back({p.s, -p.v});
+    }
+  }
+  std::sort(pts.begin(), pts.end(), [](const Point& x, const Point& y) { return x.s < y.s; });
+  std::size_t k = 0;
+  while (k < pts.size() && side(l, pts[k].v) == 0) ++k;
+  if (k == pts.size()) return std::nullopt;
+  const int dir = side(l, pts[k].v);
+  LimitViolation out = make(joint, axis, l, dir, pts[k].v);
+  out.worst_s = pts[k].s;
+  for (const Point& p : pts) {
+    if (dir * (p.v - out.value) > 0) out.value = p.v, out.worst_s = p.s;
+  }
+  out.excess = std::abs(out.value - out.limit);
+  if (k > 0) {
+    // Bisect for the crossing between the last point inside and the first outside.
+    double lo = pts[k - 1].s;
+    double hi = pts[k].s;
+    for (int i = 0; i < kRefineIterations && hi - lo > 1e-15; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (side(l, f(mid)) == dir ? hi : lo) = mid;
+    }
+    out.first_s = hi;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<LimitViolation> checkLimits(const Kinematics& kin, const JointValues& q) {
+  const Machine& m = kin.machine();
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    if (!m.joints[j].limits) continue;
+    const auto axis = *axisOfName(m.joints[j].name);
+    const Limits& l = *m.joints[j].limits;
+    if (const int dir = side(l, q[axis])) return make(static_cast<int>(j), axis, l, dir, q[axis]);
+  }
+  return std::nullopt;
+}
+
+std::optional<LimitViolation> checkLimits(const JointPath& path) {
+  const Machine& m = path.kinematics().machine();
+  std::vector<double> s;  // sample parameters, made on first need
+  std::vector<JointValues> q;
+  std::optional<LimitViolation> best;
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    if (!m.joints[j].limits) continue;
+    const auto axis = *axisOfName(m.joints[j].name);
+    const Limits& l = *m.joints[j].limits;
+    const bool solved = path.tcp() && axis <= gcode::kZ;
+    const bool onArc = path.isArc() && (axis == path.arcFirst() || axis == path.arcSecond());
+    std::optional<LimitViolation> v;
+    if (!solved && !onArc) {
+      v = linearCheck(static_cast<int>(j), axis, l, path.startJoints()[axis],
+                      path.endJoints()[axis]);
+    } else {
+      if (s.empty()) {
+        s = sampleParameters(path);
+        q.reserve(s.size());
+        for (double t : s) q.push_back(path.at(t));
+      }
+      std::vector<double> values(s.size());
+      for (std::size_t i = 0; i < s.size(); ++i) values[i] = q[i][axis];
+      v = sampledCheck(path, static_cast<int>(j), axis, l, s, values);
+    }
+    if (v && (!best || v->first_s < best->first_s)) best = v;
+  }
+  return best;
+}
+
+}  // namespace mdhd::kin
