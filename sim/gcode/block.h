@@ -22,6 +22,7 @@ struct Block {
   std::vector<Word> words;            // in the order written
   std::vector<std::string> comments;  // "(...)" texts in order, without parentheses
   std::vector<std::string> messages;  // texts of (MSG,...) and (DEBUG,...) (evaluated)
+  std::vector<std::string> prints;    // texts of (PRINT,...) (evaluated; LinuxCNC: to stderr)
   bool has_n = false;                 // an N word was present
   double n = 0.0;
 };

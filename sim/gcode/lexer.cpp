@@ -1,0 +1,94 @@
+#include "sim/gcode/lexer.h"
+
+#include <charconv>
+#include <cstdio>
+
+namespace mdhd::gcode {
+namespace {
+
+bool isBlank(char c) {
+  return c == ' ' || c == '\t';
+}
+bool isDigit(char c) {
+  return c >= '0' && c <= '9';
+}
+char lower(char c) {
+  return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+}
+
+}  // namespace
+
+void normalizeLine(std::string_view raw, LineText& out, const LineRef& ref) {
+  out.code.clear();
+  out.columns.clear();
+  out.end_column = static_cast<int>(raw.size()) + 1;
+  int comment_start = 0;  // column of the open '(' (0: not in a comment)
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const char c = raw[i];
+    const int column = static_cast<int>(i) + 1;
+    if (comment_start != 0) {
+      if (c == '(') throw GcodeError(ref.at(column), "Nested comment found");
+      if (c == ')') comment_start = 0;
+      out.code.push_back(c);
+      out.columns.push_back(column);
+      continue;
+    }
+    if (isBlank(c)) continue;
+    if (c == ';') {
+      out.end_column = column;
+      break;
+    }
+    if (c == '(') comment_start = column;
+    out.code.push_back(lower(c));
+    out.columns.push_back(column);
+  }
+  if (comment_start != 0) throw GcodeError(ref.at(comment_start), "Unclosed comment found");
+}
+
+bool Cursor::accept(std::string_view word) {
+  if (rest().substr(0, word.size()) != word) return false;
+  index_ += word.size();
+  return true;
+}
+
+void Cursor::failAt(std::size_t index, const std::string& message) const {
+  throw GcodeError(ref_.at(columnAt(index)), message);
+}
+
+double Cursor::readUnsignedNumber() {
+  const std::string& code = text_.code;
+  const std::size_t start = index_;
+  std::size_t i = start;
+  std::size_t digits = 0;
+  while (i < code.size() && isDigit(code[i])) ++i, ++digits;
+  if (i < code.size() && code[i] == '.') {
+    ++i;
+    while (i < code.size() && isDigit(code[i])) ++i, ++digits;
+  }
+  if (digits == 0) failAt(start, "No digits found where real number should be");
+  double value = 0.0;
+  const auto result = std::from_chars(code.data() + start, code.data() + i, value);
+  if (result.ec != std::errc() || result.ptr != code.data() + i) {
+    failAt(start, "Bad number format");  // e.g. out of the range of a double
+  }
+  index_ = i;
+  return value;
+}
+
+std::string_view Cursor::readComment() {
+  const std::size_t open = index_;
+  const std::size_t close = text_.code.find(')', open);
+  if (close == std::string::npos) failAt(open, "Unclosed comment found");
+  index_ = close + 1;
+  return std::string_view(text_.code).substr(open + 1, close - open - 1);
+}
+
+std::string badCharacterMessage(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  if (u >= 0x20 && u < 0x7f) return std::string("Bad character '") + c + "' used";
+  char hex[8];
+  std::snprintf(hex, sizeof hex, "0x%02X", u);
+  return std::string("Bad character ") + hex + " used";
+}
+
+}  // namespace mdhd::gcode

@@ -1,0 +1,145 @@
+#pragma once
+// The G-code reader: program text -> evaluated blocks. It owns everything
+// between the characters and the words: comments, parameters and their
+// assignment, expressions, and O-word control flow (subroutines, if, loops),
+// so the interpreter sees a flat sequence of blocks with plain numbers.
+//
+// Streaming: lines are read from a seekable LineSource; only byte offsets of
+// loop starts and subroutine bodies are kept, so memory does not grow with
+// the program's length.
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "sim/gcode/block.h"
+#include "sim/gcode/expression.h"
+#include "sim/gcode/lexer.h"
+#include "sim/gcode/oword.h"
+#include "sim/gcode/parameters.h"
+#include "sim/gcode/source.h"
+
+namespace mdhd::gcode {
+
+struct ReaderOptions {
+  bool block_delete = false;              // true: lines starting with '/' are skipped (switch ON)
+  std::uint64_t max_steps = 100'000'000;  // physical lines read in total (loops count again)
+  int max_call_depth = 10;                // nested subroutine calls (LinuxCNC: 10)
+  std::uint64_t max_loop_iterations = 10'000'000;  // per while / do / repeat loop
+};
+
+// Returns the text of external subroutine `name` (o<name> call without a
+// definition in the program), or null if there is none.
+using SubroutineLoader = std::function<std::unique_ptr<LineSource>(std::string_view name)>;
+
+// A loader that looks for <name>.ngc in each directory in turn.
+SubroutineLoader makeDirectoryLoader(std::vector<std::string> directories);
+
+class Reader {
+ public:
+  Reader(std::unique_ptr<LineSource> main, ParameterStore& params, SubroutineLoader loader = {},
+         ReaderOptions options = {});
+  ~Reader();
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+
+  // The next block to execute; false at the end of the program (end of the
+  // file or a closing '%'). Throws GcodeError for bad input.
+  bool next(Block& out);
+
+  std::uint64_t steps() const { return steps_; }
+
+ private:
+  struct Source {
+    std::unique_ptr<LineSource> lines;
+    std::string file;  // "" for the main program
+  };
+  struct SubDef {
+    int source = 0;
+    std::uint64_t body = 0;  // offset of the line after `sub`
+    int line = 0;            // line number of the `sub` line
+  };
+  enum class ControlKind { kIf, kWhile, kDo, kRepeat };
+  struct Control {
+    ControlKind kind = ControlKind::kIf;
+    std::string label;
+    std::uint64_t offset = 0;  // while: its own line; do/repeat: the line after
+    int line = 0;              // line number of the while/do/repeat/if line
+    std::uint64_t iterations = 0;
+    std::uint64_t remaining = 0;  // repeat
+    bool taken = false;           // if: a branch has run
+  };
+  struct Frame {
+    int source = 0;
+    std::string name;  // the subroutine; "" for the main program
+    std::uint64_t return_offset = 0;
+    int return_line = 0;
+    std::vector<Control> controls;
+  };
+  struct Assignment {
+    bool named = false;
+    int number = 0;
+    std::string name;
+    double value = 0.0;
+  };
+  using NameHash = std::hash<std::string_view>;
+  struct Hash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const { return NameHash{}(s); }
+  };
+
+  // reader.cpp: lines and blocks
+  LineSource& source() { return *sources_[static_cast<std::size_t>(frames_.back().source)].lines; }
+  bool readLine(int source_index);
+  bool processLine(Block& out);
+  bool isClosingPercent();
+  void parseBlock(Cursor& c, Block& out);
+  void readAssignment(Cursor& c);
+  void applyAssignments();
+  void handleComments(Block& out);
+  std::string substituteParameters(std::string_view text, int column);
+  std::vector<int> comment_columns_;
+
+  // reader_oword.cpp: control flow
+  void handleOWord(Cursor& c);
+  void readTrailingComments(Cursor& c);
+  double readCondition(Cursor& c, const OWordHead& head);
+  void defineSub(const OWordHead& head);
+  void callSub(Cursor& c, const OWordHead& head);
+  void returnFromSub(Cursor& c, const OWordHead& head);
+  const SubDef& findSub(std::string_view label, const Cursor& c);
+  bool scanForSub(int source_index, std::string_view label);
+  void handleIf(Cursor& c, const OWordHead& head);
+  void handleWhile(Cursor& c, const OWordHead& head);
+  void handleLoopEnd(Cursor& c, const OWordHead& head);
+  void handleBreakOrContinue(const OWordHead& head);
+  void skipIfBranch(const std::string& label, int line);
+  OKeyword skipTo(const std::string& label, std::initializer_list<OKeyword> stops, int from_line,
+                  std::string_view what);
+  Control& topControl(ControlKind kind, const OWordHead& head, const Cursor& c);
+  void countIteration(Control& control);
+  [[noreturn]] void failLine(int line, const std::string& message) const;
+
+  std::deque<Source> sources_;  // deque: a Source never moves (LineRef points at its name)
+  ParameterStore& params_;
+  SubroutineLoader loader_;
+  ReaderOptions options_;
+  ExpressionReader expressions_;
+  std::unordered_map<std::string, SubDef, Hash, std::equal_to<>> subs_;
+  std::vector<Frame> frames_;
+  std::vector<Assignment> assignments_;  // reused: no allocation per line
+  std::size_t assignment_count_ = 0;
+  std::string raw_;
+  LineText text_;
+  LineRef ref_;
+  std::uint64_t line_start_ = 0;
+  std::uint64_t steps_ = 0;
+  int percents_ = 0;
+  bool ended_ = false;
+};
+
+}  // namespace mdhd::gcode
