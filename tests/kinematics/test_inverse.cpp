@@ -1,0 +1,87 @@
+// G43.4 solve: FK -> IK -> FK round trips on every preset, and the failure cases.
+#include "sim/kinematics/inverse.h"
+
+#include <random>
+
+#include "sim/kinematics/presets.h"
+#include "tests/kinematics/expect_vec.h"
+
+namespace mdhd::kin {
+namespace {
+
+std::vector<Machine> allPresets() {
+  return {presets::threeAxisMill(), presets::acTrunnion(), presets::bcTrunnion(),
+          presets::bcHeadTable(),   presets::abHeadHead(), presets::bcHeadHead(),
+          presets::nutatingB45()};
+}
+
+TEST(SolveTip, SideDrillExample) {
+  // The side drill as G43.4 would program it: the tip (0, -5, 15) in W at A-90 needs
+  // X0 Y15 Z65 with a 60 mm tool.
+  const Kinematics kin(presets::acTrunnion());
+  JointValues q{};
+  q[gcode::kA] = -90;
+  ASSERT_TRUE(solveTip(kin, {0, -5, 15}, 60, q));
+  EXPECT_NEAR(q[gcode::kX], 0, 1e-12);
+  EXPECT_NEAR(q[gcode::kY], 15, 1e-12);
+  EXPECT_NEAR(q[gcode::kZ], 65, 1e-12);
+  EXPECT_EQ(q[gcode::kA], -90);
+}
+
+TEST(SolveTip, RoundTripsOnEveryPresetForRandomPoses) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> angle(-180, 180);
+  std::uniform_real_distribution<double> coord(-300, 300);
+  for (const Machine& m : allPresets()) {
+    const Kinematics kin(m);
+    for (int i = 0; i < 200; ++i) {
+      JointValues q{};
+      for (int a = gcode::kA; a <= gcode::kC; ++a) {
+        if (kin.hasAxis(static_cast<gcode::Axis>(a))) q[a] = angle(rng);
+      }
+      const double length = 20 + 0.5 * (coord(rng) + 300) / 3;
+      const glm::dvec3 tip{coord(rng), coord(rng), coord(rng)};
+      JointValues solved = q;
+      ASSERT_TRUE(solveTip(kin, tip, length, solved)) << m.name;
+      EXPECT_VEC_NEAR(kin.toolPose(solved, length).tip, tip, 1e-9);
+      // Only X Y Z moved.
+      for (int a = gcode::kA; a < gcode::kAxisCount; ++a) EXPECT_EQ(solved[a], q[a]);
+      // FK -> IK gives back the joints.
+      JointValues again = solved;
+      again[gcode::kX] = again[gcode::kY] = again[gcode::kZ] = 12345;
+      ASSERT_TRUE(solveTip(kin, kin.toolPose(solved, length).tip, length, again));
+      for (int a = gcode::kX; a <= gcode::kZ; ++a) EXPECT_NEAR(again[a], solved[a], 1e-9);
+    }
+  }
+}
+
+TEST(SolveTip, SingularMachineIsReported) {
+  // Y parallel to X: no joint moves the tip along y.
+  Machine m = presets::threeAxisMill();
+  m.joints[1].axis = {1, 0, 0};
+  const Kinematics kin(m);
+  JointValues q{};
+  q[gcode::kX] = 7;
+  EXPECT_FALSE(solveTip(kin, {1, 2, 3}, 10, q));
+  EXPECT_EQ(q[gcode::kX], 7);  // unchanged
+  EXPECT_THROW(solveTipOrThrow(kin, {1, 2, 3}, 10, q), KinematicsError);
+}
+
+TEST(SolveTip, MachineWithoutZCannotUseTcp) {
+  Machine m = presets::threeAxisMill();
+  m.joints.pop_back();
+  m.tool_chain.pop_back();
+  m.home = {};
+  const Kinematics kin(m);
+  JointValues q{};
+  EXPECT_FALSE(solveTip(kin, {1, 2, 3}, 10, q));
+  try {
+    solveTipOrThrow(kin, {1, 2, 3}, 10, q);
+    FAIL();
+  } catch (const KinematicsError& e) {
+    EXPECT_STREQ(e.what(), "G43.4 needs linear joints X, Y and Z; the machine has XY");
+  }
+}
+
+}  // namespace
+}  // namespace mdhd::kin

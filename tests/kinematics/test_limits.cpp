@@ -1,0 +1,180 @@
+// Limit checks of joint vectors and of whole paths, including excursions that only
+// happen between the end points.
+#include "sim/kinematics/limits.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "sim/kinematics/presets.h"
+#include "tests/kinematics/expect_vec.h"
+
+namespace mdhd::kin {
+namespace {
+
+JointValues xyz(double x, double y, double z) {
+  return {x, y, z, 0, 0, 0, 0, 0, 0};
+}
+
+gcode::Motion move(JointValues a, JointValues b) {
+  gcode::Motion m;
+  m.type = gcode::MotionType::kFeed;
+  m.start = a;
+  m.end = b;
+  return m;
+}
+
+// The example 3-axis machine: X -50..550, Y -50..450, Z -100..300.
+Machine exampleMill() {
+  Machine m = presets::threeAxisMill();
+  m.joints[0].limits = Limits{-50, 550};
+  m.joints[1].limits = Limits{-50, 450};
+  m.joints[2].limits = Limits{-100, 300};
+  return m;
+}
+
+TEST(Limits, VectorReportsFirstJointValueAndExcess) {
+  const Kinematics kin(exampleMill());
+  EXPECT_FALSE(checkLimits(kin, xyz(550, -50, 300)));  // on the limits is fine
+  const auto v = checkLimits(kin, xyz(600, 20, -130));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->axis, gcode::kX);
+  EXPECT_EQ(v->joint, 0);
+  EXPECT_EQ(v->value, 600);
+  EXPECT_EQ(v->limit, 550);
+  EXPECT_EQ(v->excess, 50);
+  const auto z = checkLimits(kin, xyz(0, 0, -130));
+  ASSERT_TRUE(z);
+  EXPECT_EQ(z->axis, gcode::kZ);
+  EXPECT_EQ(z->limit, -100);
+  EXPECT_EQ(z->excess, 30);
+}
+
+TEST(Limits, RotaryWithoutLimitsTurnsFreely) {
+  const Kinematics kin(presets::acTrunnion());
+  JointValues q = xyz(0, 0, 0);
+  q[gcode::kC] = 7200;
+  EXPECT_FALSE(checkLimits(kin, q));
+  q[gcode::kA] = -121;
+  const auto v = checkLimits(kin, q);
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->axis, gcode::kA);
+  EXPECT_EQ(v->excess, 1);
+}
+
+TEST(Limits, LinePathCrossingALimit) {
+  const Kinematics kin(exampleMill());
+  const JointPath p(kin, move(xyz(500, 0, 0), xyz(600, 0, 0)), 0);
+  const auto v = checkLimits(p);
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->axis, gcode::kX);
+  EXPECT_DOUBLE_EQ(v->first_s, 0.5);
+  EXPECT_EQ(v->worst_s, 1.0);
+  EXPECT_EQ(v->value, 600);
+  EXPECT_EQ(v->excess, 50);
+  EXPECT_FALSE(checkLimits(JointPath(kin, move(xyz(500, 0, 0), xyz(550, 450, 300)), 0)));
+}
+
+TEST(Limits, EarliestViolationWinsAcrossJoints) {
+  const Kinematics kin(exampleMill());
+  // Z goes 200 -> 600 and crosses its max 300 at s = 0.25; X crosses 550 at s = 0.5.
+  const JointPath p(kin, move(xyz(500, 0, 200), xyz(600, 0, 600)), 0);
+  const auto v = checkLimits(p);
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->axis, gcode::kZ);
+  EXPECT_DOUBLE_EQ(v->first_s, 0.25);
+  EXPECT_EQ(v->excess, 300);
+}
+
+TEST(Limits, ArcThatExceedsOnlyInItsMiddle) {
+  const Kinematics kin(exampleMill());
+  // G2 from (90, 445) to (110, 445) about (100, 445): clockwise over the top, through
+  // (100, 455) at s = 0.5. Y max is 450: both ends are inside. It leaves where
+  // 445 + 10 sin(theta) = 450, theta = 5 pi / 6, s = (pi - 5 pi / 6) / pi = 1/6.
+  gcode::Motion m = move(xyz(90, 445, 0), xyz(110, 445, 0));
+  m.type = gcode::MotionType::kArc;
+  m.center = {100, 445};
+  m.turn = -1;
+  const auto v = checkLimits(JointPath(kin, m, 0));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->axis, gcode::kY);
+  EXPECT_EQ(v->limit, 450);
+  EXPECT_NEAR(v->value, 455, 1e-12);
+  EXPECT_NEAR(v->excess, 5, 1e-12);
+  EXPECT_NEAR(v->worst_s, 0.5, 1e-9);
+  EXPECT_NEAR(v->first_s, 1.0 / 6, 1e-9);
+  // The same ends counter-clockwise pass under the centre: clean.
+  m.turn = 1;
+  EXPECT_FALSE(checkLimits(JointPath(kin, m, 0)));
+}
+
+TEST(Limits, ArcGrazingTheLimitIsClean) {
+  const Kinematics kin(exampleMill());
+  // Top of the circle exactly at Y 450.
+  gcode::Motion m = move(xyz(90, 440, 0), xyz(110, 440, 0));
+  m.type = gcode::MotionType::kArc;
+  m.center = {100, 440};
+  m.turn = -1;
+  EXPECT_FALSE(checkLimits(JointPath(kin, m, 0)));
+}
+
+TEST(Limits, TcpPathBulgesPastALimitMidway) {
+  // AC trunnion with Z max 180; under G43.4 the tip stays at (0, -100, 100) in W while A
+  // goes 0 -> -90. The tip in the machine is R_x(A) (0, -100, 100), its z
+  // 100 (cos A - sin A) = 100 sqrt2 cos(A + 45): 100 at both ends, 141.42 at A-45. The Z
+  // joint is that + 50 (tool length): 150, 191.42 at s 0.5, 150.
+  Machine mach = presets::acTrunnion();
+  mach.joints[2].limits = Limits{-200, 180};
+  const Kinematics kin(mach);
+  JointValues a = xyz(0, -100, 100);
+  JointValues b = a;
+  b[gcode::kA] = -90;
+  gcode::Motion m = move(a, b);
+  m.tcp = true;
+  const JointPath p(kin, m, 50);
+  EXPECT_NEAR(p.startJoints()[gcode::kZ], 150, 1e-9);
+  EXPECT_NEAR(p.endJoints()[gcode::kZ], 150, 1e-9);
+  const auto v = checkLimits(p);
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->axis, gcode::kZ);
+  EXPECT_NEAR(v->value, 50 + 100 * std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(v->worst_s, 0.5, 1e-6);
+  // 100 sqrt2 cos(A + 45) = 130 -> A = acos(1.3 / sqrt2) - 45 degrees, |A| / 90 = s.
+  const double first = (45 - std::acos(1.3 / std::sqrt(2.0)) * 180 / std::numbers::pi) / 90;
+  EXPECT_NEAR(v->first_s, first, 1e-9);
+}
+
+TEST(Limits, PathStartingOutsideStartsAtZero) {
+  const Kinematics kin(exampleMill());
+  const auto v = checkLimits(JointPath(kin, move(xyz(-60, 0, 0), xyz(0, 0, 0)), 0));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->first_s, 0);
+  EXPECT_EQ(v->worst_s, 0);
+  EXPECT_EQ(v->value, -60);
+  EXPECT_EQ(v->excess, 10);
+}
+
+TEST(Limits, ManyTurnHelixStaysFast) {
+  const Kinematics kin(exampleMill());
+  // 200 turns ccw of a 10 mm circle about (540, 200) from (530, 200): its far side touches
+  // X 550 exactly. Clean, and not slow.
+  gcode::Motion m = move(xyz(530, 200, 0), xyz(530, 200, -20));
+  m.type = gcode::MotionType::kArc;
+  m.center = {540, 200};
+  m.turn = 200;
+  EXPECT_FALSE(checkLimits(JointPath(kin, m, 0)));
+  // Centre (545, 200) from (535, 200): the far side reaches 555. Leaving where
+  // 545 + 10 cos(theta) = 550, theta = 5 pi / 3, s = (2 pi / 3) / (400 pi) = 1/600; the
+  // first time at 555 is theta = 2 pi, s = 1/400.
+  m.start = xyz(535, 200, 0);
+  m.end = xyz(535, 200, -20);
+  m.center = {545, 200};
+  const auto v = checkLimits(JointPath(kin, m, 0));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->axis, gcode::kX);
+  EXPECT_NEAR(v->value, 555, 1e-9);
+  EXPECT_NEAR(v->first_s, 1.0 / 600, 1e-12);
+  EXPECT_NEAR(std::fmod(v->worst_s * 200, 1.0), 0.5, 1e-6);  // a far side; the top is flat
+}
+
+}  // namespace
+}  // namespace mdhd::kin

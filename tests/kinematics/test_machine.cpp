@@ -1,0 +1,108 @@
+// Machine validation: every problem named by its field; axis letters.
+#include "sim/kinematics/machine.h"
+
+#include <gtest/gtest.h>
+
+#include "sim/kinematics/kinematics.h"
+#include "sim/kinematics/presets.h"
+
+namespace mdhd::kin {
+namespace {
+
+std::string issues(const Machine& m) {
+  std::string out;
+  for (const MachineIssue& i : validateMachine(m)) out += i.field + ": " + i.message + "\n";
+  return out;
+}
+
+TEST(Machine, EveryPresetIsValidAndBuilds) {
+  for (const Machine& m : {presets::threeAxisMill(), presets::acTrunnion(), presets::bcTrunnion(),
+                           presets::bcHeadTable(), presets::abHeadHead(), presets::bcHeadHead(),
+                           presets::nutatingB45()}) {
+    EXPECT_EQ(issues(m), "") << m.name;
+    EXPECT_NO_THROW(Kinematics{m});
+    EXPECT_FALSE(m.name.empty());
+  }
+}
+
+TEST(Machine, AxisLetters) {
+  EXPECT_EQ(axisOfName("B"), gcode::kB);
+  EXPECT_EQ(axisOfName("W"), gcode::kW);
+  EXPECT_EQ(axisOfName("x"), std::nullopt);  // names are upper case, as the spec writes them
+  EXPECT_EQ(axisOfName("XY"), std::nullopt);
+  EXPECT_EQ(axisOfName(""), std::nullopt);
+  EXPECT_EQ(axisLetterType(gcode::kC), JointType::kRotary);
+  EXPECT_EQ(axisLetterType(gcode::kU), JointType::kLinear);
+  const Machine m = presets::acTrunnion();
+  EXPECT_EQ(axisLetterString(m), "XYZAC");
+  const auto has = axisLetters(m);
+  EXPECT_TRUE(has[gcode::kA]);
+  EXPECT_FALSE(has[gcode::kB]);
+  EXPECT_EQ(jointIndex(m, gcode::kC), 4);
+  EXPECT_EQ(jointIndex(m, gcode::kB), -1);
+}
+
+TEST(Machine, JointProblems) {
+  Machine m = presets::acTrunnion();
+  m.joints[0].axis = {0, 0, 0};
+  m.joints[1].name = "Q";
+  m.joints[2].limits = Limits{10, -10};
+  m.joints[3].type = JointType::kLinear;
+  m.joints[4].origin.x = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(issues(m),
+            "joints[0].axis: must be a finite, non-zero direction\n"
+            "joints[1].name: \"Q\" is not an axis letter (X Y Z A B C U V W)\n"
+            "joints[2].limits: min 10.000000 is above max -10.000000\n"
+            "joints[3].type: joint A must be rotary (A B C are rotary axes)\n"
+            "joints[4].origin: must be finite\n");
+}
+
+TEST(Machine, DuplicateNames) {
+  Machine m = presets::acTrunnion();
+  m.joints[4].name = "A";
+  EXPECT_EQ(issues(m), "joints[4].name: duplicate joint name A (also joints[3])\n");
+}
+
+TEST(Machine, ChainProblems) {
+  Machine m = presets::acTrunnion();
+  m.tool_chain = {0, 1, 1, 7};
+  m.workpiece_chain = {3, 0};
+  EXPECT_EQ(issues(m),
+            "tool_chain[2]: joint Y appears twice in the chain\n"
+            "tool_chain[3]: no joint with index 7\n"
+            "workpiece_chain[1]: joint X is already in the tool_chain; a joint belongs to "
+            "one chain only\n"
+            "joints[2]: joint Z is in neither tool_chain nor workpiece_chain\n"
+            "joints[4]: joint C is in neither tool_chain nor workpiece_chain\n");
+}
+
+TEST(Machine, HomeSpindleAndFeeds) {
+  Machine m = presets::threeAxisMill();
+  m.home[gcode::kB] = 10;
+  m.spindle_axis = {0, 0, 0};
+  m.rapid_feed = 0;
+  m.max_feed = -5;
+  EXPECT_EQ(issues(m),
+            "home.B: the machine has no joint of that name\n"
+            "spindle_axis: must be a finite, non-zero direction\n"
+            "rapid_feed: must be a positive number (mm/min)\n"
+            "max_feed: must be a positive number (mm/min)\n");
+  m = Machine{};
+  m.rapid_feed = m.max_feed = 1;
+  EXPECT_EQ(issues(m), "joints: a machine needs at least one joint\n");
+}
+
+TEST(Machine, NonUnitAxesAreNormalised) {
+  Machine m = presets::threeAxisMill();
+  m.joints[0].axis = {2, 0, 0};
+  m.spindle_axis = {0, 0, 5};
+  const Kinematics kin(m);
+  JointValues q{};
+  q[gcode::kX] = 3;
+  const ToolPose p = kin.toolPose(q, 10);
+  EXPECT_EQ(p.tip, glm::dvec3(3, 0, -10));
+  EXPECT_EQ(p.axis, glm::dvec3(0, 0, 1));
+}
+
+}  // namespace
+}  // namespace mdhd::kin
