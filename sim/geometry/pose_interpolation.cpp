@@ -1,0 +1,44 @@
+#include "sim/geometry/pose_interpolation.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+namespace mdhd::geom {
+
+namespace {
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+}  // namespace
+
+ToolPose normalizedPose(const ToolPose& pose) {
+  if (!finite(pose.tip) || !finite(pose.axis))
+    throw std::invalid_argument("tool pose: tip and axis must be finite");
+  const double len = glm::length(pose.axis);
+  if (!(len > 1e-12)) throw std::invalid_argument("tool pose: axis must not be zero");
+  return ToolPose{pose.tip, pose.axis / len};
+}
+
+double axisAngle(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+}
+
+ToolPose interpolatePose(const ToolPose& a, const ToolPose& b, double f) {
+  ToolPose p;
+  p.tip = a.tip + f * (b.tip - a.tip);
+  const double th = axisAngle(a.axis, b.axis);
+  if (th < 1e-9) {
+    p.axis = glm::normalize(a.axis + f * (b.axis - a.axis));
+  } else {
+    const double s = std::sin(th);
+    p.axis =
+        glm::normalize((std::sin((1.0 - f) * th) / s) * a.axis + (std::sin(f * th) / s) * b.axis);
+  }
+  if (f == 0.0) p.axis = a.axis;  // the ends exactly, not up to rounding
+  if (f == 1.0) p = b;
+  return p;
+}
+
+}  // namespace mdhd::geom

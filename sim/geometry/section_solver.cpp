@@ -1,0 +1,118 @@
+#include "sim/geometry/section_solver.h"
+
+#include <cmath>
+#include <limits>
+
+namespace mdhd::geom {
+
+namespace {
+
+constexpr double kTiny = 1e-13;
+
+struct Extent {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double t) {
+    lo = t < lo ? t : lo;
+    hi = t > hi ? t : hi;
+  }
+};
+
+bool inHalfPlanes(const HalfPlane (&h)[4], const bool (&live)[4], double t, double s, double eps) {
+  for (int i = 0; i < 4; ++i)
+    if (live[i] && h[i](t, s) > eps) return false;
+  return true;
+}
+
+// Parameters lambda where g(p + lambda v) = 0, v a unit vector: 0, 1 or 2 of them.
+int lineRoots(const Quadric2& g, double pt, double ps, double vt, double vs, double (&lam)[2]) {
+  const double a2 = g.a * vt * vt + 2.0 * g.b * vt * vs + g.c * vs * vs;
+  const double b2 = vt * (g.a * pt + g.b * ps + g.d) + vs * (g.b * pt + g.c * ps + g.e);
+  const double c2 = g(pt, ps);
+  if (std::abs(a2) <= kTiny) {
+    if (b2 == 0.0) return 0;  // g is constant along the line: vertices decide
+    lam[0] = -c2 / (2.0 * b2);
+    return 1;
+  }
+  double disc = b2 * b2 - a2 * c2;
+  if (disc < 0.0) {
+    // A tangent line whose discriminant rounding made negative still touches.
+    if (disc < -1e-12 * (b2 * b2 + std::abs(a2 * c2))) return 0;
+    disc = 0.0;
+  }
+  const double q = -(b2 + std::copysign(std::sqrt(disc), b2));
+  if (q == 0.0) {
+    lam[0] = 0.0;
+    return 1;
+  }
+  lam[0] = q / a2;
+  lam[1] = c2 / q;
+  return 2;
+}
+
+// The points of g = 0 on the line n . (t, s) + k = 0 that lie in the half-planes.
+void addLineCandidates(const Quadric2& g, double nt, double ns, double k, const HalfPlane (&h)[4],
+                       const bool (&live)[4], double eps, Extent& ext) {
+  const double n2 = nt * nt + ns * ns;
+  if (n2 <= kTiny * kTiny) return;
+  const double len = std::sqrt(n2);
+  const double pt = -k * nt / n2;
+  const double ps = -k * ns / n2;
+  const double vt = -ns / len;
+  const double vs = nt / len;
+  double lam[2];
+  const int n = lineRoots(g, pt, ps, vt, vs, lam);
+  for (int i = 0; i < n; ++i) {
+    const double t = pt + lam[i] * vt;
+    const double s = ps + lam[i] * vs;
+    if (inHalfPlanes(h, live, t, s, eps)) ext.add(t);
+  }
+}
+
+void addVertexCandidates(const Quadric2& g, const HalfPlane (&h)[4], const bool (&live)[4],
+                         const SectionTolerance& tol, Extent& ext) {
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      if (!live[i] || !live[j]) continue;
+      const double det = h[i].nt * h[j].ns - h[i].ns * h[j].nt;
+      const double scale = std::hypot(h[i].nt, h[i].ns) * std::hypot(h[j].nt, h[j].ns);
+      if (std::abs(det) <= 1e-12 * scale) continue;  // parallel edges never meet
+      const double t = (-h[i].k * h[j].ns + h[j].k * h[i].ns) / det;
+      const double s = (-h[j].k * h[i].nt + h[i].k * h[j].nt) / det;
+      if (g(t, s) <= tol.quadric && inHalfPlanes(h, live, t, s, tol.linear)) ext.add(t);
+    }
+}
+
+// A singular point of g on its zero set (the apex of a cone cut through its tip).
+void addStationaryCandidate(const Quadric2& g, const HalfPlane (&h)[4], const bool (&live)[4],
+                            const SectionTolerance& tol, Extent& ext) {
+  const double det = g.a * g.c - g.b * g.b;
+  if (std::abs(det) <= 1e-12 * (g.a * g.a + 2.0 * g.b * g.b + g.c * g.c)) return;
+  const double t = (-g.d * g.c + g.e * g.b) / det;
+  const double s = (-g.e * g.a + g.d * g.b) / det;
+  if (g(t, s) <= tol.quadric && inHalfPlanes(h, live, t, s, tol.linear)) ext.add(t);
+}
+
+}  // namespace
+
+bool sectionExtent(const Quadric2& g, const HalfPlane (&h)[4], const SectionTolerance& tol,
+                   double& lo, double& hi) {
+  // A half-plane without a normal is all or nothing.
+  bool live[4];
+  for (int i = 0; i < 4; ++i) {
+    live[i] = h[i].nt * h[i].nt + h[i].ns * h[i].ns > kTiny * kTiny;
+    if (!live[i] && h[i].k > tol.linear) return false;
+  }
+  Extent ext;
+  addVertexCandidates(g, h, live, tol, ext);
+  for (int i = 0; i < 4; ++i)
+    if (live[i]) addLineCandidates(g, h[i].nt, h[i].ns, h[i].k, h, live, tol.linear, ext);
+  addLineCandidates(g, g.b, g.c, g.e, h, live, tol.linear, ext);  // dg/ds = 0
+  addStationaryCandidate(g, h, live, tol, ext);
+  if (!(ext.lo <= ext.hi)) return false;
+  lo = ext.lo;
+  hi = ext.hi;
+  return true;
+}
+
+}  // namespace mdhd::geom

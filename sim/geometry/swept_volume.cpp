@@ -1,0 +1,235 @@
+#include "sim/geometry/swept_volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "sim/geometry/pose_interpolation.h"
+#include "sim/geometry/section_solver.h"
+
+namespace mdhd::geom {
+
+namespace {
+
+constexpr int kMaxSegments = 100000;
+
+Aabb emptyBox() {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return Aabb{glm::dvec3(inf), glm::dvec3(-inf)};
+}
+
+void grow(Aabb& box, const Aabb& other) {
+  box.lo = glm::min(box.lo, other.lo);
+  box.hi = glm::max(box.hi, other.hi);
+}
+
+// Box of a cylinder of `radius` from `base + z0 axis` to `base + z1 axis`: the hull of
+// its two end disks, each spanning radius * sqrt(1 - axis_i^2) along coordinate i.
+Aabb cylinderBox(const glm::dvec3& base, const glm::dvec3& axis, double z0, double z1,
+                 double radius) {
+  glm::dvec3 ext;
+  for (int i = 0; i < 3; ++i) ext[i] = radius * std::sqrt(std::max(0.0, 1.0 - axis[i] * axis[i]));
+  const glm::dvec3 c0 = base + z0 * axis;
+  const glm::dvec3 c1 = base + z1 * axis;
+  return Aabb{glm::min(c0, c1) - ext, glm::max(c0, c1) + ext};
+}
+
+bool collinearContinuation(const Translation& run, const glm::dvec3& next) {
+  const glm::dvec3 a = run.to - run.from;
+  const glm::dvec3 b = next - run.to;
+  const double aa = glm::dot(a, a);
+  const double bb = glm::dot(b, b);
+  if (aa == 0.0 || bb == 0.0) return true;
+  const glm::dvec3 c = glm::cross(a, b);
+  return glm::dot(a, b) > 0.0 && glm::dot(c, c) <= 1e-24 * aa * bb;
+}
+
+void checkTolerance(double tolerance) {
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    throw std::invalid_argument("swept volume: tolerance must be > 0 with adaptive steps, got " +
+                                std::to_string(tolerance));
+}
+
+}  // namespace
+
+int sweepSegments(const ToolPart& part, const ToolPose& a, const ToolPose& b, int steps,
+                  double tolerance) {
+  if (steps < 0) throw std::invalid_argument("swept volume: steps must be >= 0");
+  const ToolPose pa = normalizedPose(a);
+  const ToolPose pb = normalizedPose(b);
+  const double th = axisAngle(pa.axis, pb.axis);
+  if (th > std::acos(-1.0) - 1e-9)
+    throw std::invalid_argument(
+        "swept volume: opposite tool axes have no unique path between them");
+  if (steps > 0) return steps;
+  if (th == 0.0) return 1;
+  checkTolerance(tolerance);
+  const double reach = part.reach();
+  // Half a segment's turn moves a point at `reach` by 2 reach sin(th / 4n) <= tolerance.
+  const double halfTurn = 2.0 * std::asin(std::min(1.0, tolerance / (2.0 * reach)));
+  const double n = std::ceil(th / (2.0 * halfTurn));
+  if (!(n <= kMaxSegments))
+    throw std::invalid_argument("swept volume: tolerance " + std::to_string(tolerance) +
+                                " needs more than " + std::to_string(kMaxSegments) +
+                                " steps for this turn of the tool axis");
+  return std::max(1, static_cast<int>(n));
+}
+
+SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const ToolPose& b,
+                                 int steps, double tolerance) {
+  const int n = sweepSegments(part, a, b, steps, tolerance);
+  const ToolPose pa = normalizedPose(a);
+  const ToolPose pb = normalizedPose(b);
+  std::vector<ToolPose> poses;
+  poses.reserve(n + 1);
+  for (int i = 0; i <= n; ++i) poses.push_back(interpolatePose(pa, pb, double(i) / n));
+  return SweptVolume(part, poses);
+}
+
+SweptVolume SweptVolume::at(const ToolPart& part, const ToolPose& pose) {
+  return SweptVolume(part, std::span<const ToolPose>(&pose, 1));
+}
+
+SweptVolume::SweptVolume(const ToolPart& part, std::span<const ToolPose> poses) {
+  if (poses.empty()) throw std::invalid_argument("swept volume: needs at least one pose");
+  std::vector<ToolPose> p;
+  p.reserve(poses.size());
+  for (const ToolPose& q : poses) p.push_back(normalizedPose(q));
+  const double reach = part.reach();
+  // Pose j holds from the midpoint before it to the midpoint after it.
+  for (size_t j = 0; j < p.size(); ++j) {
+    const glm::dvec3 from = j == 0 ? p[j].tip : 0.5 * (p[j - 1].tip + p[j].tip);
+    const glm::dvec3 to = j + 1 == p.size() ? p[j].tip : 0.5 * (p[j].tip + p[j + 1].tip);
+    if (j + 1 < p.size()) {
+      const double th = axisAngle(p[j].axis, p[j + 1].axis);
+      errorBound_ = std::max(errorBound_, 2.0 * reach * std::sin(th / 4.0));
+    }
+    if (!translations_.empty()) {
+      Translation& run = translations_.back();
+      if (run.axis == p[j].axis && collinearContinuation(run, to)) {
+        run.to = to;
+        continue;
+      }
+    }
+    translations_.push_back(Translation{from, to, p[j].axis});
+  }
+  bounds_ = emptyBox();
+  for (const Translation& tr : translations_) addTranslation(part, tr);
+  if (bodies_.empty()) bounds_ = Aabb{p[0].tip, p[0].tip};
+}
+
+void SweptVolume::addTranslation(const ToolPart& part, const Translation& tr) {
+  const glm::dvec3 d = tr.to - tr.from;
+  const double len = glm::length(d);
+  const glm::dvec3 w = tr.axis;
+  for (const ConvexBody& cb : part.bodies) {
+    SweptBody body;
+    body.tip = tr.from;
+    body.axis = w;
+    body.length = len;
+    body.dir = len > 0.0 ? d / len : glm::dvec3(0.0);
+    const double zd = glm::dot(w, body.dir);
+    for (int a = 0; a < 3; ++a) {
+      AxisTerms& t = body.terms[a];
+      t.ze = w[a];
+      t.zd = zd;
+      t.re2 = 1.0 - w[a] * w[a];
+      t.rerd = body.dir[a] - w[a] * zd;
+      t.rd2 = len > 0.0 ? 1.0 - zd * zd : 0.0;
+    }
+    // Candidates on an edge are kept within these; far below the grid's resolution.
+    const double scale = part.reach() + len + 1.0;
+    body.linearTol = 1e-9 * scale;
+    body.quadricTol = 1e-12 * scale * scale;
+    body.box = emptyBox();
+    body.pieceBegin = static_cast<int>(pieces_.size());
+    for (const RevolvedPiece& rp : cb.pieces) {
+      SweptPiece sp{rp.z0, rp.z1, rp.alpha, rp.beta, rp.gamma, {}};
+      sp.box = cylinderBox(tr.from, w, rp.z0, rp.z1, rp.maxRadius());
+      grow(sp.box, cylinderBox(tr.to, w, rp.z0, rp.z1, rp.maxRadius()));
+      grow(body.box, sp.box);
+      pieces_.push_back(sp);
+    }
+    body.pieceEnd = static_cast<int>(pieces_.size());
+    grow(bounds_, body.box);
+    bodies_.push_back(body);
+  }
+}
+
+bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double v,
+                               Interval& out) const {
+  const int i1 = (axis + 1) % 3;
+  const int i2 = (axis + 2) % 3;
+  // Line point t (relative to the tip's coordinate) minus s * dir, in the tool's frame:
+  // z = z0 + ze t - zd s and the radial part r0 + t re - s rd.
+  glm::dvec3 delta(0.0);
+  delta[i1] = u - body.tip[i1];
+  delta[i2] = v - body.tip[i2];
+  const AxisTerms& k = body.terms[axis];
+  const double z0 = glm::dot(body.axis, delta);
+  const double r0re = -z0 * k.ze;
+  const double r0rd = glm::dot(delta, body.dir) - z0 * k.zd;
+  const double r0r0 = glm::dot(delta, delta) - z0 * z0;
+  const double base = body.tip[axis];
+  const SectionTolerance tol{body.linearTol, body.quadricTol};
+
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (int i = body.pieceBegin; i < body.pieceEnd; ++i) {
+    const SweptPiece& p = pieces_[i];
+    if (u < p.box.lo[i1] || u > p.box.hi[i1] || v < p.box.lo[i2] || v > p.box.hi[i2]) continue;
+    if (p.box.lo[axis] >= lo && p.box.hi[axis] <= hi) continue;  // cannot widen the hull
+    // g = |r|^2 - alpha - beta z - gamma z^2
+    Quadric2 g;
+    g.a = k.re2 - p.gamma * k.ze * k.ze;
+    g.b = -k.rerd + p.gamma * k.ze * k.zd;
+    g.c = k.rd2 - p.gamma * k.zd * k.zd;
+    g.d = r0re - 0.5 * p.beta * k.ze - p.gamma * z0 * k.ze;
+    g.e = -r0rd + 0.5 * p.beta * k.zd + p.gamma * z0 * k.zd;
+    g.f = r0r0 - p.alpha - p.beta * z0 - p.gamma * z0 * z0;
+    const HalfPlane h[4] = {{0.0, -1.0, 0.0},
+                            {0.0, 1.0, -body.length},
+                            {-k.ze, k.zd, p.z0 - z0},
+                            {k.ze, -k.zd, z0 - p.z1}};
+    double plo = 0.0;
+    double phi = 0.0;
+    if (!sectionExtent(g, h, tol, plo, phi)) continue;
+    lo = std::min(lo, plo + base);
+    hi = std::max(hi, phi + base);
+  }
+  if (!(hi > lo)) return false;
+  out = Interval{lo, hi};
+  return true;
+}
+
+void SweptVolume::lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const {
+  if (axis < 0 || axis > 2) return;
+  const int i1 = (axis + 1) % 3;
+  const int i2 = (axis + 2) % 3;
+  if (u < bounds_.lo[i1] || u > bounds_.hi[i1] || v < bounds_.lo[i2] || v > bounds_.hi[i2]) return;
+  const size_t first = out.size();
+  for (const SweptBody& body : bodies_) {
+    if (u < body.box.lo[i1] || u > body.box.hi[i1] || v < body.box.lo[i2] || v > body.box.hi[i2])
+      continue;
+    Interval iv;
+    if (bodyInterval(body, axis, u, v, iv)) out.push_back(iv);
+  }
+  if (out.size() - first < 2) return;
+  // Bodies overlap: sort and merge in place, so nothing but `out` is allocated.
+  std::sort(out.begin() + first, out.end(),
+            [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
+  size_t keep = first;
+  for (size_t i = first + 1; i < out.size(); ++i) {
+    if (out[i].lo <= out[keep].hi)
+      out[keep].hi = std::max(out[keep].hi, out[i].hi);
+    else
+      out[++keep] = out[i];
+  }
+  out.resize(keep + 1);
+}
+
+}  // namespace mdhd::geom

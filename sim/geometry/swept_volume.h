@@ -1,0 +1,86 @@
+#pragma once
+// The volume a tool part sweeps between poses, as a LineSolid for the stock.
+//
+// A move with a constant axis is a translation, and its sweep is represented exactly:
+// every convex body of the part is Minkowski-summed with the segment and cut with the
+// grid line in closed form (section_solver.h). A move that turns the axis becomes a
+// chain of poses; each pose's axis holds while the tip runs over the half-segments on
+// either side of it, so every pose is exact and the rest is off by at most
+// errorBound(): the chord a point at the part's reach travels in half a segment's turn.
+#include <span>
+#include <vector>
+
+#include "sim/geometry/line_solid.h"
+#include "sim/geometry/tool_part.h"
+#include "sim/geometry/tool_pose.h"
+
+namespace mdhd::geom {
+
+// One translational sweep: the part at `axis` with its tip moving from `from` to `to`.
+struct Translation {
+  glm::dvec3 from{0.0};
+  glm::dvec3 to{0.0};
+  glm::dvec3 axis{0.0, 0.0, 1.0};
+};
+
+class SweptVolume final : public LineSolid {
+ public:
+  // The part moving from `a` to `b`: tip on the segment, axis along the great circle
+  // (slerp). steps > 0: that many equal segments; steps == 0: as many as keep
+  // errorBound() <= tolerance (one for a pure translation). Throws
+  // std::invalid_argument for a non-finite pose, a zero axis, opposite axes (no
+  // unique great circle: split the move) or a tolerance that is not > 0 when needed.
+  static SweptVolume between(const ToolPart& part, const ToolPose& a, const ToolPose& b, int steps,
+                             double tolerance);
+  // The part standing at one pose (a stamp).
+  static SweptVolume at(const ToolPart& part, const ToolPose& pose);
+  // Through a chain of poses (at least one), tips joined by segments, each pose's axis
+  // held over the half-segments next to it; runs with one axis on one line merge.
+  SweptVolume(const ToolPart& part, std::span<const ToolPose> poses);
+
+  Aabb bounds() const override { return bounds_; }
+  void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const override;
+
+  // The translational sweeps this is exactly the union of.
+  const std::vector<Translation>& translations() const { return translations_; }
+  // Bound on the distance between this and the sweep with the axis slerped between
+  // consecutive poses (0 when the axis never turns).
+  double errorBound() const { return errorBound_; }
+  bool empty() const { return bodies_.empty(); }
+
+ private:
+  struct AxisTerms {
+    double ze = 0, zd = 0, re2 = 0, rerd = 0, rd2 = 0;
+  };
+  struct SweptPiece {
+    double z0, z1, alpha, beta, gamma;
+    Aabb box;
+  };
+  struct SweptBody {
+    Aabb box;
+    glm::dvec3 tip{0.0};
+    glm::dvec3 axis{0.0};
+    glm::dvec3 dir{0.0};  // unit direction of the move (0 for a stamp)
+    double length = 0.0;
+    double linearTol = 0.0;
+    double quadricTol = 0.0;
+    AxisTerms terms[3];
+    int pieceBegin = 0;
+    int pieceEnd = 0;
+  };
+
+  void addTranslation(const ToolPart& part, const Translation& tr);
+  bool bodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
+
+  std::vector<Translation> translations_;
+  std::vector<SweptBody> bodies_;
+  std::vector<SweptPiece> pieces_;
+  Aabb bounds_;
+  double errorBound_ = 0.0;
+};
+
+// How many equal segments SweptVolume::between uses for these arguments.
+int sweepSegments(const ToolPart& part, const ToolPose& a, const ToolPose& b, int steps,
+                  double tolerance);
+
+}  // namespace mdhd::geom

@@ -1,0 +1,156 @@
+#include "sim/geometry/tool_part.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace mdhd::geom {
+
+double RevolvedPiece::radiusAt(double z) const {
+  const double r2 = alpha + beta * z + gamma * z * z;
+  return r2 > 0.0 ? std::sqrt(r2) : 0.0;
+}
+
+double RevolvedPiece::maxRadius() const {
+  if (sphere && centre >= z0 && centre <= z1) return radiusAt(centre);
+  return std::max(r0, r1);
+}
+
+RevolvedPiece cylinderPiece(double z0, double z1, double radius) {
+  return frustumPiece(z0, z1, radius, radius);
+}
+
+RevolvedPiece frustumPiece(double z0, double z1, double r0, double r1) {
+  // rho <= m + k z, squared; m + k z >= 0 on [z0, z1] keeps the square convex.
+  const double k = (r1 - r0) / (z1 - z0);
+  const double m = r0 - k * z0;
+  RevolvedPiece p;
+  p.z0 = z0;
+  p.z1 = z1;
+  p.alpha = m * m;
+  p.beta = 2.0 * m * k;
+  p.gamma = k * k;
+  p.r0 = r0;
+  p.r1 = r1;
+  return p;
+}
+
+RevolvedPiece spherePiece(double centre, double radius, double z0, double z1) {
+  // rho^2 <= radius^2 - (z - centre)^2
+  RevolvedPiece p;
+  p.z0 = z0;
+  p.z1 = z1;
+  p.alpha = radius * radius - centre * centre;
+  p.beta = 2.0 * centre;
+  p.gamma = -1.0;
+  p.sphere = true;
+  p.centre = centre;
+  p.r0 = p.radiusAt(z0);
+  p.r1 = p.radiusAt(z1);
+  return p;
+}
+
+double ConvexBody::radiusAt(double z) const {
+  for (const RevolvedPiece& p : pieces)
+    if (z >= p.z0 && z <= p.z1) return p.radiusAt(z);
+  return 0.0;
+}
+
+double ToolPart::reach() const {
+  double r = 0.0;
+  for (const ConvexBody& b : bodies)
+    for (const RevolvedPiece& p : b.pieces) {
+      const double z = std::max(std::abs(p.z0), std::abs(p.z1));
+      r = std::max(r, std::hypot(p.maxRadius(), z));
+    }
+  return r;
+}
+
+namespace {
+
+// Frustums through points of the corner arc (centre (a, rc) in the rho-z plane), as
+// few as keep the chord's sag within the tolerance.
+void addTorusCorner(ConvexBody& body, double a, double rc, double tolerance) {
+  const double quarter = std::numbers::pi / 2.0;
+  const double maxAngle = tolerance >= rc ? quarter : 2.0 * std::acos(1.0 - tolerance / rc);
+  const int n = std::max(1, static_cast<int>(std::ceil(quarter / maxAngle)));
+  auto point = [&](int k, double& rho, double& z) {
+    const double th = -quarter + quarter * k / n;
+    rho = a + rc * std::cos(th);
+    z = rc + rc * std::sin(th);
+  };
+  double rho0 = a;
+  double z0 = 0.0;
+  for (int k = 1; k <= n; ++k) {
+    double rho1 = 0.0;
+    double z1 = 0.0;
+    point(k, rho1, z1);
+    if (k == n) {  // the exact top, so the cylinder above meets it
+      z1 = rc;
+      rho1 = a + rc;
+    }
+    body.pieces.push_back(frustumPiece(z0, z1, rho0, rho1));
+    rho0 = rho1;
+    z0 = z1;
+  }
+}
+
+ConvexBody cutterBody(const Tool& t, double cornerTolerance) {
+  ConvexBody body;
+  const double r = t.radius();
+  double top = 0.0;  // where the straight flutes begin
+  switch (t.shape) {
+    case ToolShape::kFlat:
+      break;
+    case ToolShape::kBall:
+      body.pieces.push_back(spherePiece(r, r, 0.0, r));
+      top = r;
+      break;
+    case ToolShape::kBull:
+      addTorusCorner(body, r - t.corner_radius, t.corner_radius, cornerTolerance);
+      top = t.corner_radius;
+      break;
+    case ToolShape::kDrill:
+      top = t.tipHeight();
+      body.pieces.push_back(frustumPiece(0.0, top, 0.0, r));
+      break;
+  }
+  if (t.flute_length > top) body.pieces.push_back(cylinderPiece(top, t.flute_length, r));
+  return body;
+}
+
+}  // namespace
+
+ToolPart makeToolPart(const Tool& tool, ToolPartKind kind, double corner_tolerance) {
+  if (auto problem = validateTool(tool))
+    throw std::invalid_argument("tool " + std::to_string(tool.number) + ": " + problem->field +
+                                ": " + problem->message);
+  if (!(corner_tolerance > 0.0))
+    throw std::invalid_argument("tool part: corner tolerance must be > 0");
+  ToolPart part;
+  part.kind = kind;
+  switch (kind) {
+    case ToolPartKind::kCutter:
+      part.bodies.push_back(cutterBody(tool, corner_tolerance));
+      break;
+    case ToolPartKind::kShank:
+      if (tool.holderBottom() > tool.flute_length)
+        part.bodies.push_back(ConvexBody{
+            {cylinderPiece(tool.flute_length, tool.holderBottom(), tool.shank_diameter / 2.0)}});
+      break;
+    case ToolPartKind::kHolder: {
+      // Listed from the gauge point down; each cylinder is its own convex body.
+      double top = tool.length;
+      for (const HolderSection& h : tool.holder) {
+        part.bodies.push_back(ConvexBody{{cylinderPiece(top - h.length, top, h.diameter / 2.0)}});
+        top -= h.length;
+      }
+      break;
+    }
+  }
+  return part;
+}
+
+}  // namespace mdhd::geom

@@ -1,0 +1,65 @@
+#pragma once
+// The tool's parts in its own frame: tip at the origin, axis +z towards the spindle.
+// Every part is a union of convex bodies of revolution; every body is a stack of
+// pieces, each a quadric of revolution cut by two planes, which is what the swept
+// volume can intersect with a line in closed form.
+#include <vector>
+
+#include "sim/geometry/tool.h"
+
+namespace mdhd::geom {
+
+// {p : z0 <= z <= z1, x^2 + y^2 <= alpha + beta*z + gamma*z^2}, convex on [z0, z1].
+struct RevolvedPiece {
+  double z0 = 0.0;
+  double z1 = 0.0;
+  double alpha = 0.0;
+  double beta = 0.0;
+  double gamma = 0.0;
+  // The profile's shape for signed distances: a segment from (r0, z0) to (r1, z1),
+  // or a circular arc about (0, centre) when `sphere` is set.
+  bool sphere = false;
+  double centre = 0.0;
+  double r0 = 0.0;
+  double r1 = 0.0;
+
+  double radiusAt(double z) const;
+  double maxRadius() const;
+};
+
+RevolvedPiece cylinderPiece(double z0, double z1, double radius);
+// Radius r0 at z0 to r1 at z1 (both >= 0): cylinders, cones and frustums.
+RevolvedPiece frustumPiece(double z0, double z1, double r0, double r1);
+// The zone z0 <= z <= z1 of a ball of `radius` centred on the axis at `centre`.
+RevolvedPiece spherePiece(double centre, double radius, double z0, double z1);
+
+// A convex solid of revolution: pieces stacked bottom to top, touching.
+struct ConvexBody {
+  std::vector<RevolvedPiece> pieces;
+
+  double bottom() const { return pieces.front().z0; }
+  double top() const { return pieces.back().z1; }
+  double radiusAt(double z) const;  // 0 outside [bottom, top]
+};
+
+enum class ToolPartKind { kCutter, kShank, kHolder };
+
+struct ToolPart {
+  ToolPartKind kind = ToolPartKind::kCutter;
+  std::vector<ConvexBody> bodies;  // empty when the part has no extent (no holder)
+
+  // Distance from the tip of the farthest point: what a rotation moves most.
+  double reach() const;
+  bool empty() const { return bodies.empty(); }
+};
+
+// The bull's torus corner is a stack of frustums through points of the true arc: the
+// solid lies inside the true tool and at most `corner_tolerance` (mm) below its surface.
+inline constexpr double kDefaultCornerTolerance = 1e-3;
+
+// The part of a valid tool (see validateTool).
+// Throws std::invalid_argument with validateTool's problem for an invalid tool.
+ToolPart makeToolPart(const Tool& tool, ToolPartKind kind,
+                      double corner_tolerance = kDefaultCornerTolerance);
+
+}  // namespace mdhd::geom
