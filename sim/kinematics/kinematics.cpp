@@ -8,20 +8,20 @@
 namespace mdhd::kin {
 
 void sinCosDegrees(double degrees, double& s, double& c) {
-  double r = std::fmod(degrees, 360.0);  // exact
-  if (r < 0.0) r += 360.0;
-  if (r >= 360.0) r -= 360.0;
+  // fmod is exact but costs; only reduce what is large enough to lose digits.
+  double r = std::abs(degrees) > 360.0 ? std::fmod(degrees, 360.0) : degrees;  // (-360, 360)
+  if (r > 180.0) r -= 360.0;
+  if (r <= -180.0) r += 360.0;  // now (-180, 180], exact
   if (r == 0.0) {
     s = 0.0, c = 1.0;
   } else if (r == 90.0) {
     s = 1.0, c = 0.0;
   } else if (r == 180.0) {
     s = 0.0, c = -1.0;
-  } else if (r == 270.0) {
+  } else if (r == -90.0) {
     s = -1.0, c = 0.0;
   } else {
-    // Reduce to (-180, 180] so the radians stay small.
-    const double rad = (r > 180.0 ? r - 360.0 : r) * (std::numbers::pi / 180.0);
+    const double rad = r * (std::numbers::pi / 180.0);
     s = std::sin(rad);
     c = std::cos(rad);
   }
@@ -65,11 +65,13 @@ int Kinematics::fill(const Machine& m, const std::vector<int>& indices, Chain& c
 
 Rigid Kinematics::compose(const Chain& chain, int count, const JointValues& q) {
   Rigid acc;
+  bool turned = false;  // acc.rotation is still the identity: skip its products
   for (int i = 0; i < count; ++i) {
     const ChainJoint& j = chain[static_cast<std::size_t>(i)];
     const double v = q[static_cast<std::size_t>(j.axis)];
     if (!j.rotary) {
-      acc.translation += acc.rotation * (j.origin + v * j.unit);
+      const glm::dvec3 t = j.origin + v * j.unit;
+      acc.translation += turned ? acc.rotation * t : t;
       continue;
     }
     double s = 0.0;
@@ -77,8 +79,10 @@ Rigid Kinematics::compose(const Chain& chain, int count, const JointValues& q) {
     sinCosDegrees(v, s, c);
     // Rodrigues: R = c I + s [u]x + (1 - c) u u^T, about the line through origin.
     const glm::dmat3 r = c * glm::dmat3(1.0) + s * j.cross + (1.0 - c) * j.outer;
-    acc.translation += acc.rotation * (j.origin - r * j.origin);
-    acc.rotation = acc.rotation * r;
+    const glm::dvec3 t = j.origin - r * j.origin;
+    acc.translation += turned ? acc.rotation * t : t;
+    acc.rotation = turned ? acc.rotation * r : r;
+    turned = true;
   }
   return acc;
 }

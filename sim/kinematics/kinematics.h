@@ -48,6 +48,7 @@ class Kinematics {
   Rigid workpieceChain(const JointValues& q) const { return compose(wp_, wp_count_, q); }
   // T_wp^-1 * T_tool: maps tool-frame coordinates to W (holder and shank go with it).
   Rigid toolInWorkpiece(const JointValues& q) const {
+    if (wp_count_ == 0) return toolChain(q);  // W is the machine frame
     return workpieceChain(q).inverse() * toolChain(q);
   }
   // The tip and axis in W of a tool of `length` (gauge point to tip).
