@@ -1,0 +1,223 @@
+#include "sim/gcode/block_executor.h"
+
+#include <cmath>
+
+#include "sim/gcode/block_step.h"
+
+namespace mdhd::gcode {
+
+BlockExecutor::BlockExecutor(InterpreterConfig config, MotionSink& sink)
+    : config_(std::move(config)), out_(sink, config_.home) {
+  for (int i = 0; i < kCoordSystems; ++i)
+    for (int a = 0; a < 3; ++a) state_.g5x[i][a] = config_.work_offsets[i][a];
+  state_.current = toProgram(state_, config_.home);
+  state_.programmed = state_.current;
+  queue_.reserve(16);
+}
+
+void BlockExecutor::execute(const Block& block) {
+  readBlockWords(block, config_.axis_mask, words_);
+  InterpState working = state_;
+  Step st{block, words_, working};
+  checkWordUse(st);
+  for (const std::string& text : block.messages) {
+    Event e;
+    e.type = EventType::kMessage;
+    e.text = text;
+    emitEvent(st, std::move(e));
+  }
+  runModes(st);
+  runNonModal(st);
+  if (st.motion >= 0) runMotion(st);
+  runStop(st);
+  state_ = working;
+}
+
+void BlockExecutor::finish(const Block& last) {
+  if (state_.ended) return;
+  InterpState working = state_;
+  Step st{last, words_, working};
+  words_ = BlockWords{};
+  words_.g.fill(-1);
+  words_.m.fill(-1);
+  if (working.comp_side != CompSide::kOff) compOff(st);
+  Event e;
+  e.type = EventType::kProgramEnd;
+  emitEvent(st, std::move(e));
+  working.ended = true;
+  state_ = working;
+}
+
+void BlockExecutor::emitEvent(Step& st, Event e) {
+  e.pos = st.block.pos;
+  if (!queue_.empty()) {
+    Queued q;
+    q.kind = Queued::kEvent;
+    q.event = std::move(e);
+    queue_.push_back(std::move(q));
+    return;
+  }
+  out_.event(e);
+}
+
+namespace {
+
+bool usesAxesNonModal(int g0) {
+  return g0 == 100 || g0 == 280 || g0 == 300 || g0 == 920;
+}
+
+void checkArgumentLetters(const BlockExecutor&, const Block& block, const BlockWords& w,
+                          int motion) {
+  const bool arc = motion == 20 || motion == 30;
+  const bool cycle = isCycle(motion);
+  const int g0 = w.g[kGNonModal];
+  auto reject = [&](char c, const char* text) {
+    if (w.has(c)) failAt(block, w.col(c), text);
+  };
+  if (!arc && motion != 870) {
+    reject('I', "I word with no G2, G3, G5, G5.1, G76, or G87 to use it");
+    reject('J', "J word with no G2, G3, G5, G5.1, G76, or G87 to use it");
+    reject('K', "K word with no G2, G3, G33, G33.1, G76, or G87 to use it");
+  }
+  if (!arc && !cycle && g0 != 100) reject('R', "R word with no G code that uses it");
+  const int comp = w.g[kGCutterComp];
+  if (comp != 410 && comp != 420 && comp != 411 && comp != 421)
+    reject('D', "D word with no G41, G41.1, G42, or G42.1 to use it");
+  const int tlo = w.g[kGToolLength];
+  if (tlo != 430 && tlo != 434) reject('H', "H word with no G43 or G43.4 to use it");
+  if (g0 != 100 && !cycle) reject('L', "L word with no G10 or canned cycle to use it");
+  if (motion != 730 && motion != 830 && w.m[kMToolChange] != 610 && w.g[kGPathMode] != 640)
+    reject('Q', "Q word with no G73, G83, G64 or M61 to use it");
+  if (w.has('E')) failAt(block, w.col('E'), "E word with no G76 to use it");
+}
+
+}  // namespace
+
+void BlockExecutor::checkWordUse(Step& st) {
+  const BlockWords& w = st.w;
+  const int g0 = w.g[kGNonModal];
+  const bool nonmodal_axes = usesAxesNonModal(g0) || w.g[kGToolLength] == 431;
+  const int explicit_motion = w.g[kGMotion];
+  if (explicit_motion >= 0) {
+    if (explicit_motion == 800 && w.hasAxis() && !nonmodal_axes)
+      st.fail("Cannot use axis values with G80", w.axis_column);
+    if (explicit_motion != 800 && usesAxesNonModal(g0))
+      st.fail("Cannot use two G codes that both use axis values", w.g_column[kGNonModal]);
+    st.motion = explicit_motion;
+  } else if (w.hasAxis() && !nonmodal_axes) {
+    if (st.s.motion == 800)
+      st.fail("Cannot use axis values without a g code that uses them", w.axis_column);
+    st.motion = st.s.motion;
+  }
+  if (g0 == 530) {
+    if (st.motion != 0 && st.motion != 10)
+      st.fail("Must use G0 or G1 with G53", w.g_column[kGNonModal]);
+    const bool incremental = w.g[kGDistance] == 910 || (w.g[kGDistance] < 0 && st.s.incremental);
+    if (incremental) st.fail("Cannot use G53 incremental", w.g_column[kGNonModal]);
+  }
+  const int motion_for_words = explicit_motion == 800 ? 800 : (st.motion >= 0 ? st.motion : -1);
+  checkArgumentLetters(*this, st.block, w, motion_for_words);
+  if (w.has('F') && w.get('F') < 0) st.failWord('F', "Negative F word used");
+  if (w.has('S') && w.get('S') < 0) st.failWord('S', "Negative spindle speed used");
+  if (w.has('T') && (w.get('T') < 0 || w.get('T') != std::floor(w.get('T'))))
+    st.failWord('T', "Negative or non-integer T word used");
+}
+
+void BlockExecutor::runModes(Step& st) {
+  setFeedMode(st);
+  if (st.w.has('F') && st.s.feed_mode != FeedMode::kInverseTime) {
+    st.s.feed_word = st.w.get('F');
+    st.s.feed = st.lenWord('F');
+  }
+  if (st.w.has('S')) st.s.speed = st.w.get('S');
+  setTool(st);
+  setSpindleAndCoolant(st);
+  if (st.w.g[kGNonModal] == 40) {
+    if (!st.w.has('P')) st.fail("Dwell time missing with G4", st.w.g_column[kGNonModal]);
+    if (st.w.get('P') < 0) st.failWord('P', "Negative dwell time with G4");
+    Event e;
+    e.type = EventType::kDwell;
+    e.value = st.w.get('P');
+    emitEvent(st, std::move(e));
+  }
+  setPlane(st);
+  setUnits(st);
+  setCutterComp(st);
+  setToolLength(st);
+  setCoordSystem(st);
+  if (st.w.g[kGPathMode] >= 0) st.s.path_mode = st.w.g[kGPathMode];
+  if (st.w.g[kGDistance] >= 0) st.s.incremental = st.w.g[kGDistance] == 910;
+  if (st.w.g[kGArcDistance] >= 0) st.s.arc_absolute = st.w.g[kGArcDistance] == 901;
+  if (st.w.g[kGRetract] >= 0) st.s.retract_to_r = st.w.g[kGRetract] == 990;
+}
+
+void BlockExecutor::runNonModal(Step& st) {
+  switch (st.w.g[kGNonModal]) {
+    case 100:
+      setOffsetsG10(st);
+      break;
+    case 280:
+    case 300:
+      goToStored(st, st.w.g[kGNonModal] == 300);
+      break;
+    case 281:
+    case 301: {
+      AxisValues& stored = st.w.g[kGNonModal] == 281 ? st.s.g28 : st.s.g30;
+      stored = toMachine(st.s, st.s.current);
+      break;
+    }
+    case 920:
+    case 921:
+    case 922:
+    case 923:
+      setG92(st);
+      break;
+    default:
+      break;
+  }
+}
+
+void BlockExecutor::runStop(Step& st) {
+  const int stop = st.w.m[kMStop];
+  if (stop < 0) return;
+  Event e;
+  if (stop == 0 || stop == 10 || stop == 600) {
+    e.type = EventType::kProgramStop;
+    e.value = stop / 10.0;
+    emitEvent(st, std::move(e));
+    return;
+  }
+  // M2 / M30: LinuxCNC's end-of-program reset.
+  InterpState& s = st.s;
+  if (s.comp_side != CompSide::kOff) compOff(st);
+  const AxisValues machine = toMachine(s, s.current);
+  s.coord_system = 0;
+  s.current = toProgram(s, machine);
+  s.programmed = s.current;
+  s.plane = Plane::kXY;
+  s.incremental = false;
+  s.feed_mode = FeedMode::kUnitsPerMinute;
+  s.feed = 0.0;
+  s.feed_word = 0.0;
+  s.motion = 10;
+  s.cycle.initial_level_set = false;
+  if (s.spindle != SpindleState::kOff) {
+    s.spindle = SpindleState::kOff;
+    Event sp;
+    sp.type = EventType::kSpindle;
+    sp.spindle = SpindleState::kOff;
+    emitEvent(st, std::move(sp));
+  }
+  if (s.mist || s.flood) {
+    s.mist = s.flood = false;
+    Event c;
+    c.type = EventType::kCoolant;
+    emitEvent(st, std::move(c));
+  }
+  e.type = EventType::kProgramEnd;
+  e.value = stop / 10.0;
+  emitEvent(st, std::move(e));
+  s.ended = true;
+}
+
+}  // namespace mdhd::gcode

@@ -1,0 +1,218 @@
+// Modal settings of a block: feed mode, tools, spindle, coolant, plane, units,
+// cutter compensation, tool length, coordinate system.
+#include <cmath>
+#include <string>
+
+#include "sim/gcode/block_step.h"
+
+namespace mdhd::gcode {
+
+void BlockExecutor::setFeedMode(Step& st) {
+  const int g = st.w.g[kGFeedMode];
+  if (g < 0) return;
+  if (g == 930) {
+    st.s.feed_mode = FeedMode::kInverseTime;
+    return;
+  }
+  // G94 and G95 zero the feed rate, as LinuxCNC does (a same-line F sets it again).
+  st.s.feed_mode = g == 940 ? FeedMode::kUnitsPerMinute : FeedMode::kUnitsPerRevolution;
+  st.s.feed = 0.0;
+  st.s.feed_word = 0.0;
+}
+
+void BlockExecutor::setTool(Step& st) {
+  InterpState& s = st.s;
+  if (st.w.has('T')) {
+    const int t = static_cast<int>(st.w.get('T'));
+    if (t != 0 && !config_.tools.find(t))
+      st.failWord('T', "Requested tool " + std::to_string(t) + " not found in the tool table");
+    s.selected_tool = t;
+  }
+  const int m = st.w.m[kMToolChange];
+  if (m == 60) {
+    if (s.selected_tool < 0)
+      st.fail("Need tool prepared -Txx- for toolchange", st.w.m_column[kMToolChange]);
+    if (s.comp_side != CompSide::kOff)
+      st.fail("Cannot change tools with cutter radius compensation on",
+              st.w.m_column[kMToolChange]);
+    if (s.spindle != SpindleState::kOff) {
+      s.spindle = SpindleState::kOff;
+      Event e;
+      e.type = EventType::kSpindle;
+      emitEvent(st, std::move(e));
+    }
+    s.tool = s.selected_tool;
+    Event e;
+    e.type = EventType::kToolChange;
+    e.tool = s.tool;
+    emitEvent(st, std::move(e));
+  } else if (m == 610) {
+    if (!st.w.has('Q')) st.fail("Q word missing with M61", st.w.m_column[kMToolChange]);
+    const double q = st.w.get('Q');
+    const int t = static_cast<int>(q);
+    if (q < 0 || q != t) st.failWord('Q', "Need non-negative integer Q word with M61");
+    if (t != 0 && !config_.tools.find(t))
+      st.failWord('Q', "Requested tool " + std::to_string(t) + " not found in the tool table");
+    s.tool = t;
+    Event e;
+    e.type = EventType::kToolChange;
+    e.tool = t;
+    emitEvent(st, std::move(e));
+  }
+}
+
+void BlockExecutor::setSpindleAndCoolant(Step& st) {
+  InterpState& s = st.s;
+  const int sp = st.w.m[kMSpindle];
+  if (sp >= 0 || (st.w.has('S') && s.spindle != SpindleState::kOff)) {
+    if (sp == 30) s.spindle = SpindleState::kClockwise;
+    if (sp == 40) s.spindle = SpindleState::kCounterClockwise;
+    if (sp == 50) s.spindle = SpindleState::kOff;
+    Event e;
+    e.type = EventType::kSpindle;
+    e.spindle = s.spindle;
+    e.spindle_rpm = s.speed;
+    emitEvent(st, std::move(e));
+  }
+  const int c = st.w.m[kMCoolant];
+  if (c < 0) return;
+  if (c == 90) {
+    s.mist = s.flood = false;
+  } else {
+    s.mist = s.mist || c == 70 || st.w.mist_and_flood;
+    s.flood = s.flood || c == 80 || st.w.mist_and_flood;
+  }
+  Event e;
+  e.type = EventType::kCoolant;
+  e.value = s.flood ? 2.0 : (s.mist ? 1.0 : 0.0);
+  emitEvent(st, std::move(e));
+}
+
+void BlockExecutor::setPlane(Step& st) {
+  const int g = st.w.g[kGPlane];
+  if (g < 0) return;
+  const Plane p = g == 170 ? Plane::kXY : (g == 180 ? Plane::kXZ : Plane::kYZ);
+  if (p != Plane::kXY && st.s.comp_side != CompSide::kOff)
+    st.fail(p == Plane::kXZ ? "Cannot use XZ plane with cutter radius comp"
+                            : "Cannot use YZ plane with cutter radius comp",
+            st.w.g_column[kGPlane]);
+  st.s.plane = p;
+}
+
+void BlockExecutor::setUnits(Step& st) {
+  const int g = st.w.g[kGUnits];
+  if (g < 0) return;
+  const bool inch = g == 200;
+  if (inch != st.s.inch && st.s.comp_side != CompSide::kOff)
+    st.fail("Cannot change units with cutter radius comp", st.w.g_column[kGUnits]);
+  // Positions are kept in mm, so a unit switch moves nothing.
+  st.s.inch = inch;
+}
+
+void BlockExecutor::setCutterComp(Step& st) {
+  const int g = st.w.g[kGCutterComp];
+  if (g < 0) return;
+  InterpState& s = st.s;
+  const int column = st.w.g_column[kGCutterComp];
+  if (g == 400) {
+    compOff(st);
+    return;
+  }
+  if (s.comp_side != CompSide::kOff)
+    st.fail("Cannot turn cutter radius comp on when already on", column);
+  if (s.plane != Plane::kXY) st.fail("Cutter radius compensation allowed only in XY plane", column);
+  double radius = 0.0;
+  if (g == 411 || g == 421) {
+    if (!st.w.has('D')) st.fail("G41.1/G42.1 needs a D word (the diameter)", column);
+    radius = st.lenWord('D') / 2.0;
+  } else {
+    int tool = s.tool;
+    if (st.w.has('D')) {
+      const double d = st.w.get('D');
+      if (d < 0 || d != std::floor(d)) st.failWord('D', "Negative or non-integer D word used");
+      tool = static_cast<int>(d);
+    }
+    if (tool != 0) {
+      const ToolEntry* entry = config_.tools.find(tool);
+      if (!entry)
+        st.failWord('D', "Requested tool " + std::to_string(tool) + " not found in the tool table");
+      radius = entry->diameter / 2.0;
+    }
+  }
+  bool left = g == 410 || g == 411;
+  if (radius < 0) {  // a negative diameter swaps the side, as in LinuxCNC
+    radius = -radius;
+    left = !left;
+  }
+  s.comp_side = left ? CompSide::kLeft : CompSide::kRight;
+  s.comp_radius = radius;
+  s.comp_first_move = true;
+  s.programmed = s.current;
+}
+
+void BlockExecutor::setToolLength(Step& st) {
+  const int g = st.w.g[kGToolLength];
+  if (g < 0) return;
+  InterpState& s = st.s;
+  const int column = st.w.g_column[kGToolLength];
+  if (s.comp_side != CompSide::kOff)
+    st.fail("Cannot change tool offset with cutter radius compensation on", column);
+  const AxisValues machine = toMachine(s, s.current);
+  auto lengthOf = [&](int tool) {
+    if (tool == 0) return 0.0;
+    const ToolEntry* entry = config_.tools.find(tool);
+    if (!entry)
+      st.failWord('H', "Requested tool " + std::to_string(tool) + " not found in the tool table");
+    return entry->length;
+  };
+  auto hWord = [&]() {
+    const double h = st.w.get('H');
+    if (h < 0 || h != std::floor(h)) st.failWord('H', "Negative or non-integer H word used");
+    return static_cast<int>(h);
+  };
+  switch (g) {
+    case 430: {
+      const int tool = st.w.has('H') ? hWord() : s.tool;
+      s.tool_length = lengthOf(tool);
+      s.tool_length_tool = tool;
+      break;
+    }
+    case 431:
+      if (st.w.has('X') || st.w.has('Y'))
+        st.fail("G43.1 offsets other than Z are not supported", column);
+      if (st.w.has('Z')) s.tool_length = st.lenWord('Z');
+      s.tool_length_tool = -1;
+      break;
+    case 434: {
+      const int tool = st.w.has('H') ? hWord() : s.tool;
+      if (tool == 0) st.fail("G43.4 needs a tool: H word or a tool in the spindle", column);
+      lengthOf(tool);  // must exist
+      s.tool_length = 0.0;
+      s.tool_length_tool = tool;
+      break;
+    }
+    default:  // G49
+      s.tool_length = 0.0;
+      s.tool_length_tool = 0;
+      break;
+  }
+  s.tool_length_mode = g;
+  s.current = toProgram(s, machine);  // the machine does not move
+  s.programmed = s.current;
+}
+
+void BlockExecutor::setCoordSystem(Step& st) {
+  const int g = st.w.g[kGCoordSystem];
+  if (g < 0) return;
+  InterpState& s = st.s;
+  if (s.comp_side != CompSide::kOff)
+    st.fail("Cannot change coordinate systems with cutter radius comp",
+            st.w.g_column[kGCoordSystem]);
+  const int index = g <= 590 ? (g - 540) / 10 : 6 + (g - 591);
+  const AxisValues machine = toMachine(s, s.current);
+  s.coord_system = index;
+  s.current = toProgram(s, machine);
+  s.programmed = s.current;
+}
+
+}  // namespace mdhd::gcode

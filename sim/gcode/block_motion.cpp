@@ -1,0 +1,210 @@
+// G0 G1 G2 G3 and the dispatch to canned cycles and cutter compensation.
+#include <algorithm>
+#include <cmath>
+
+#include "sim/gcode/arc_math.h"
+#include "sim/gcode/block_step.h"
+
+namespace mdhd::gcode {
+namespace {
+
+bool isRotary(int axis) {
+  return axis == kA || axis == kB || axis == kC;
+}
+
+bool compActive(const InterpState& s) {
+  return s.comp_side != CompSide::kOff && s.comp_radius > 0.0;
+}
+
+}  // namespace
+
+void BlockExecutor::runMotion(Step& st) {
+  const int motion = st.motion;
+  InterpState& s = st.s;
+  if (!isCycle(motion)) s.cycle.initial_level_set = false;
+  if (motion == 800) {
+    s.motion = 800;
+    return;
+  }
+  if (isCycle(motion)) {
+    cannedCycle(st, motion);
+    return;
+  }
+  const AxisValues end = findEnd(st);
+  if (motion == 0 || motion == 10)
+    straight(st, motion, end);
+  else
+    arc(st, motion, end);
+  s.motion = motion;
+}
+
+AxisValues BlockExecutor::findEnd(const Step& st) const {
+  const InterpState& s = st.s;
+  const BlockWords& w = st.w;
+  AxisValues end = s.current;
+  if (compActive(s)) {  // X and Y continue from the programmed point, not the tool centre
+    end[kX] = s.programmed[kX];
+    end[kY] = s.programmed[kY];
+  }
+  if (w.g[kGNonModal] == 530) {  // G53: the words are machine values
+    AxisValues machine = toMachine(s, s.current);
+    for (int a = 0; a < kAxisCount; ++a)
+      if (w.has(kAxisLetters[a]))
+        machine[a] = isRotary(a) ? w.get(kAxisLetters[a]) : st.len(w.get(kAxisLetters[a]));
+    return toProgram(s, machine);
+  }
+  for (int a = 0; a < kAxisCount; ++a) {
+    const char c = kAxisLetters[a];
+    if (!w.has(c)) continue;
+    const double v = isRotary(a) ? w.get(c) : st.len(w.get(c));
+    end[a] = s.incremental ? end[a] + v : v;
+  }
+  return end;
+}
+
+FeedInfo BlockExecutor::feedFor(const Step& st, double length, bool rotary_only) const {
+  const InterpState& s = st.s;
+  FeedInfo f;
+  f.mode = s.feed_mode;
+  if (s.feed_mode != FeedMode::kInverseTime) {
+    f.rate = s.feed;
+    f.raw = s.feed_word;
+    return f;
+  }
+  // G93: the rate that makes the move take 1/F minutes (LinuxCNC: at least 0.1).
+  const double inverse = st.w.get('F');
+  f.inverse_time = inverse;
+  if (rotary_only) {
+    f.raw = std::max(0.1, length * inverse);
+    f.rate = f.raw;
+  } else {
+    f.raw = std::max(0.1, length / st.unit() * inverse);
+    f.rate = f.raw * st.unit();
+  }
+  return f;
+}
+
+void BlockExecutor::emitStraight(Step& st, MotionType type, const AxisValues& end,
+                                 const FeedInfo& feed) {
+  out_.straight(type, end, st.s, st.block, feed, false);
+  st.s.current = end;
+  st.s.programmed = end;
+}
+
+void BlockExecutor::straight(Step& st, int motion, const AxisValues& end) {
+  InterpState& s = st.s;
+  const int column = st.gColumn(kGMotion);
+  FeedInfo feed;
+  if (motion == 10) {
+    if (s.feed_mode == FeedMode::kUnitsPerMinute && s.feed == 0.0)
+      st.fail("Cannot do G1 with zero feed rate", column);
+    if (s.feed_mode == FeedMode::kUnitsPerRevolution) {
+      if (s.feed == 0.0) st.fail("Cannot do G1 with zero feed rate", column);
+      if (s.speed == 0.0)
+        st.fail("Cannot feed with zero spindle speed in feed per rev mode", column);
+    }
+    if (s.feed_mode == FeedMode::kInverseTime && !st.w.has('F'))
+      st.fail("F word missing with inverse time g1 move", column);
+    // Length from the programmed point (under compensation) as LinuxCNC measures it.
+    const AxisValues& from = compActive(s) ? s.programmed : s.current;
+    double lin = 0.0, rot = 0.0;
+    for (int a = 0; a < kAxisCount; ++a) {
+      const double d = end[a] - from[a];
+      (isRotary(a) ? rot : lin) += d * d;
+    }
+    const bool rotary_only = lin == 0.0 && rot != 0.0;
+    feed = feedFor(st, std::sqrt(rotary_only ? rot : lin), rotary_only);
+  }
+  const MotionType type = motion == 0 ? MotionType::kRapid : MotionType::kFeed;
+  if (compActive(s)) {
+    if (st.w.g[kGNonModal] == 530)
+      st.fail("Cannot use G53 with cutter radius comp", st.w.g_column[kGNonModal]);
+    if (s.comp_first_move)
+      compStraightFirst(st, type, end, feed);
+    else
+      compStraight(st, type, end, feed);
+    return;
+  }
+  emitStraight(st, type, end, feed);
+}
+
+void BlockExecutor::arc(Step& st, int motion, const AxisValues& end) {
+  InterpState& s = st.s;
+  const BlockWords& w = st.w;
+  const int column = st.gColumn(kGMotion);
+  const bool ccw = motion == 30;
+  if (s.tool_length_mode == 434) st.fail("Arcs are not supported under G43.4", column);
+  const PlaneAxes axes = planeAxes(s.plane);
+  // Centre words of the plane: G17 I J, G18 K I, G19 J K.
+  const char l1 = s.plane == Plane::kXY ? 'I' : (s.plane == Plane::kXZ ? 'K' : 'J');
+  const char l2 = s.plane == Plane::kXY ? 'J' : (s.plane == Plane::kXZ ? 'I' : 'K');
+  const char normal_letter = s.plane == Plane::kXY ? 'K' : (s.plane == Plane::kXZ ? 'J' : 'I');
+  const bool ijk = w.has(l1) || w.has(l2);
+  if (w.has('R') && ijk) st.fail("Mixed radius-ijk format for arc", column);
+  if (!w.has('R') && !ijk) st.fail("R, I, J, and K words all missing for arc", column);
+  if (w.has(normal_letter)) {
+    static const char* kMsg[] = {"K word given for arc in XY plane",
+                                 "J word given for arc in XZ plane",
+                                 "I word given for arc in YZ plane"};
+    st.failWord(normal_letter, kMsg[static_cast<int>(s.plane)]);
+  }
+  if (s.feed_mode == FeedMode::kInverseTime && !w.has('F'))
+    st.fail("F word missing with inverse time arc move", column);
+  if (s.feed_mode != FeedMode::kInverseTime && s.feed == 0.0)
+    st.fail("Cannot make arc with zero feed rate", column);
+  if (s.feed_mode == FeedMode::kUnitsPerRevolution && s.speed == 0.0)
+    st.fail("Cannot feed with zero spindle speed in feed per rev mode", column);
+  int turns = 1;
+  if (w.has('P')) {
+    const double p = w.get('P');
+    if (p < 1 || p != std::floor(p))
+      st.failWord('P', "P word must be a positive integer with G2/G3");
+    turns = static_cast<int>(p);
+  }
+  double o1 = 0.0, o2 = 0.0;
+  if (ijk) {
+    if (s.arc_absolute && !w.has(l1))
+      st.fail(std::string(1, l1) + " word missing in absolute center arc", column);
+    if (s.arc_absolute && !w.has(l2))
+      st.fail(std::string(1, l2) + " word missing in absolute center arc", column);
+    o1 = w.has(l1) ? st.lenWord(l1) : 0.0;
+    o2 = w.has(l2) ? st.lenWord(l2) : 0.0;
+  } else {
+    const char a1 = kAxisLetters[axes.first], a2 = kAxisLetters[axes.second];
+    if (!w.has(a1) && !w.has(a2)) {
+      const char lo = std::min(a1, a2), hi = std::max(a1, a2);
+      static const char* kPlane[] = {"XY", "XZ", "YZ"};
+      st.fail(std::string(1, lo) + " and " + hi + " words missing for arc in " +
+                  kPlane[static_cast<int>(s.plane)] + " plane",
+              column);
+    }
+  }
+  const bool comp = compActive(s);
+  const AxisValues& from = comp ? s.programmed : s.current;
+  const ArcTolerance tol = arcTolerance(s.inch);
+  const double s1 = from[axes.first], s2 = from[axes.second];
+  const double e1 = end[axes.first], e2 = end[axes.second];
+  ArcFit fit;
+  std::string error;
+  if (w.has('R'))
+    error = arcFromRadius(ccw, s1, s2, e1, e2, st.lenWord('R'), turns, tol, fit);
+  else
+    error = arcFromCenter(ccw, s1, s2, e1, e2, o1, o2, s.arc_absolute, turns, tol, st.unit(),
+                          kAxisLetters[axes.first], kAxisLetters[axes.second], fit);
+  if (!error.empty()) st.fail(error, column);
+  const double length = arcLength(s1, s2, from[axes.normal], fit.center1, fit.center2, fit.turn, e1,
+                                  e2, end[axes.normal]);
+  const FeedInfo feed = feedFor(st, length, false);
+  if (comp) {
+    if (s.comp_first_move)
+      compArcFirst(st, end, feed, fit);
+    else
+      compArc(st, end, feed, fit);
+    return;
+  }
+  out_.arc(end, fit.center1, fit.center2, fit.turn, s, st.block, feed, false);
+  s.current = end;
+  s.programmed = end;
+}
+
+}  // namespace mdhd::gcode

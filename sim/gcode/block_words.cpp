@@ -1,0 +1,95 @@
+#include "sim/gcode/block_words.h"
+
+#include <cmath>
+#include <string>
+
+#include "sim/gcode/motion.h"
+
+namespace mdhd::gcode {
+
+void failAt(const Block& block, int column, const std::string& message) {
+  SourcePos pos = block.pos;
+  pos.column = column;
+  throw GcodeError(std::move(pos), message);
+}
+
+namespace {
+
+// Code x10 of a G/M value, -1 when it is not a multiple of 0.1.
+int code10(double v) {
+  if (!(v >= 0.0) || v > 10000.0) return -1;
+  double scaled = v * 10.0;
+  double r = std::round(scaled);
+  if (std::fabs(scaled - r) > 1e-6) return -1;
+  return static_cast<int>(r);
+}
+
+int axisIndex(char c) {
+  for (int i = 0; i < kAxisCount; ++i)
+    if (kAxisLetters[i] == c) return i;
+  return -1;
+}
+
+void addG(const Block& block, const Word& w, BlockWords& out) {
+  const int c = code10(w.value);
+  const CodeInfo* info = c < 0 ? nullptr : findGCode(c);
+  if (!info) failAt(block, w.column, "Unknown g code used");
+  if (out.g[info->group] != -1) failAt(block, w.column, "Two G codes used from same modal group");
+  out.g[info->group] = c;
+  out.g_column[info->group] = w.column;
+}
+
+void addM(const Block& block, const Word& w, BlockWords& out) {
+  const int c = code10(w.value);
+  const CodeInfo* info = c < 0 ? nullptr : findMCode(c);
+  if (!info) failAt(block, w.column, "Unknown m code used");
+  int& slot = out.m[info->group];
+  if (slot != -1) {
+    const bool pair =
+        info->group == kMCoolant && ((slot == 70 && c == 80) || (slot == 80 && c == 70));
+    if (!pair || out.mist_and_flood)
+      failAt(block, w.column, "Two M codes used from same modal group");
+    out.mist_and_flood = true;
+    return;
+  }
+  slot = c;
+  out.m_column[info->group] = w.column;
+}
+
+}  // namespace
+
+void readBlockWords(const Block& block, unsigned axis_mask, BlockWords& out) {
+  out.g.fill(-1);
+  out.m.fill(-1);
+  out.mist_and_flood = false;
+  out.letters = 0;
+  out.axis_column = 0;
+  for (const Word& w : block.words) {
+    const char c = w.letter;
+    if (c < 'A' || c > 'Z') failAt(block, w.column, std::string("Bad character used"));
+    if (c == 'G') {
+      addG(block, w, out);
+      continue;
+    }
+    if (c == 'M') {
+      addM(block, w, out);
+      continue;
+    }
+    const int axis = axisIndex(c);
+    if (axis >= 0) {
+      if (!((axis_mask >> axis) & 1u)) {
+        const char lower = static_cast<char>(c - 'A' + 'a');
+        failAt(block, w.column, std::string("Bad character '") + lower + "' used");
+      }
+      if (out.axis_column == 0) out.axis_column = w.column;
+    }
+    const unsigned bit = 1u << (c - 'A');
+    if (out.letters & bit)
+      failAt(block, w.column, std::string("Multiple ") + c + " words on one line");
+    out.letters |= bit;
+    out.value[c - 'A'] = w.value;
+    out.column[c - 'A'] = w.column;
+  }
+}
+
+}  // namespace mdhd::gcode

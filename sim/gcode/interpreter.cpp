@@ -1,0 +1,57 @@
+#include "sim/gcode/interpreter.h"
+
+#include "sim/gcode/reader.h"
+
+namespace mdhd::gcode {
+
+Interpreter::Interpreter(InterpreterConfig config, MotionSink& sink)
+    : executor_(std::move(config), sink) {
+  params_.setPredefined([this](std::string_view name) -> std::optional<double> {
+    double v = 0.0;
+    if (executor_.predefined(name, v)) return v;
+    return std::nullopt;
+  });
+  publishParameters(true);
+}
+
+void Interpreter::run(std::unique_ptr<LineSource> program) {
+  const InterpreterConfig& config = executor_.config();
+  ReaderOptions options;
+  options.block_delete = config.block_delete;
+  Reader reader(std::move(program), params_, config.subroutine_loader, options);
+  Block block;
+  while (!executor_.ended() && reader.next(block)) {
+    executor_.execute(block);
+    ++blocks_;
+    const BlockWords& w = executor_.lastWords();
+    publishParameters(w.g[kGNonModal] >= 0 || w.g[kGCoordSystem] >= 0);
+  }
+  executor_.finish(block);
+}
+
+void Interpreter::publishParameters(bool offsets) {
+  const InterpState& s = executor_.state();
+  const double unit = s.inch ? kMmPerInch : 1.0;
+  // #5420..#5428: current position in program units (LinuxCNC).
+  for (int a = 0; a < kAxisCount; ++a) {
+    const bool rotary = a >= kA && a <= kC;
+    params_.set(5420 + a, rotary ? s.current[a] : s.current[a] / unit);
+  }
+  params_.set(5400, s.tool);
+  params_.set(5403, s.tool_length);
+  const ToolEntry* tool = executor_.config().tools.find(s.tool);
+  params_.set(5410, tool ? tool->diameter : 0.0);
+  if (!offsets) return;
+  // Offsets and stored positions in machine units (mm).
+  for (int a = 0; a < kAxisCount; ++a) {
+    params_.set(5161 + a, s.g28[a]);
+    params_.set(5181 + a, s.g30[a]);
+    params_.set(5211 + a, s.g92_saved[a]);
+    for (int c = 0; c < kCoordSystems; ++c) params_.set(5221 + 20 * c + a, s.g5x[c][a]);
+  }
+  for (int c = 0; c < kCoordSystems; ++c) params_.set(5230 + 20 * c, s.rotation[c]);
+  params_.set(5210, s.g92_applied ? 1.0 : 0.0);
+  params_.set(5220, s.coord_system + 1);
+}
+
+}  // namespace mdhd::gcode
