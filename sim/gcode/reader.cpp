@@ -147,7 +147,10 @@ void Reader::parseBlock(Cursor& c, Block& out) {
       word.value = expressions_.readRealValue(c);
     } else if (ch == '(') {
       comment_columns_.push_back(c.column());
-      out.comments.emplace_back(c.readComment());
+      std::string_view text = c.readComment();
+      // LinuxCNC passes comments on without their leading blanks.
+      while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+      out.comments.emplace_back(text);
     } else if (ch == '#') {
       readAssignment(c);
     } else if (ch == 'n') {
@@ -198,8 +201,7 @@ void Reader::applyAssignments() {
 
 void Reader::handleComments(Block& out) {
   for (std::size_t i = 0; i < out.comments.size(); ++i) {
-    std::string_view text = out.comments[i];
-    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+    const std::string_view text = out.comments[i];
     const int column = comment_columns_[i];
     if (startsWithNoCase(text, "msg,")) {
       out.messages.emplace_back(text.substr(4));
