@@ -143,8 +143,8 @@ void SweptVolume::addTranslation(const ToolPart& part, const Translation& tr) {
     }
     // Candidates on an edge are kept within these; far below the grid's resolution.
     const double scale = part.reach() + len + 1.0;
-    body.linearTol = 1e-9 * scale;
-    body.quadricTol = 1e-12 * scale * scale;
+    body.linearTol = 1e-12 * scale;
+    body.quadricTol = 1e-13 * scale * scale;
     body.box = emptyBox();
     body.pieceBegin = static_cast<int>(pieces_.size());
     for (const RevolvedPiece& rp : cb.pieces) {

@@ -125,7 +125,7 @@ inline double minimiseConvex(const std::function<double(double)>& f) {
   double d = a + r * (b - a);
   double fc = f(c);
   double fd = f(d);
-  for (int i = 0; i < 80; ++i) {
+  for (int i = 0; i < 60; ++i) {
     if (fc < fd) {
       b = d, d = c, fd = fc;
       c = b - r * (b - a);
