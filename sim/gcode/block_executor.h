@@ -75,6 +75,7 @@ class BlockExecutor {
   FeedInfo feedFor(const Step& st, double length_mm, bool rotary_only) const;
   void straight(Step& st, int motion, const AxisValues& end);
   void arc(Step& st, int motion, const AxisValues& end);
+  void probe(Step& st, const AxisValues& end);
   void emitStraight(Step& st, MotionType type, const AxisValues& end, const FeedInfo& feed);
   // Canned cycles (canned_cycles.cpp).
   void cannedCycle(Step& st, int motion);

@@ -31,7 +31,9 @@ void BlockExecutor::runMotion(Step& st) {
     return;
   }
   const AxisValues end = findEnd(st);
-  if (motion == 0 || motion == 10)
+  if (motion >= 382 && motion <= 385)
+    probe(st, end);
+  else if (motion == 0 || motion == 10)
     straight(st, motion, end);
   else
     arc(st, motion, end);
@@ -126,6 +128,24 @@ void BlockExecutor::straight(Step& st, int motion, const AxisValues& end) {
     return;
   }
   emitStraight(st, type, end, feed);
+}
+
+// G38.2..G38.5: a feed move to the target. Without a probe signal the move runs
+// to its end, which is also what a verifier must assume.
+void BlockExecutor::probe(Step& st, const AxisValues& end) {
+  InterpState& s = st.s;
+  const int column = st.gColumn(kGMotion);
+  if (s.comp_side != CompSide::kOff) st.fail("Cannot probe with cutter radius comp on", column);
+  if (s.feed_mode == FeedMode::kInverseTime)
+    st.fail("Cannot probe in inverse time feed mode", column);
+  if (s.feed == 0.0) st.fail("Cannot probe with zero feed rate", column);
+  if (s.tool_length_mode == 434) st.fail("Cannot probe under G43.4", column);
+  for (int a = kA; a <= kC; ++a)
+    if (end[a] != s.current[a]) st.fail("Cannot move rotary axes during probing", column);
+  double d2 = 0.0;
+  for (int a = kX; a <= kZ; ++a) d2 += (end[a] - s.current[a]) * (end[a] - s.current[a]);
+  if (std::sqrt(d2) < 0.254) st.fail("Start of probe move is within 0.01 inch of end", column);
+  emitStraight(st, MotionType::kFeed, end, feedFor(st, 0.0, false));
 }
 
 void BlockExecutor::arc(Step& st, int motion, const AxisValues& end) {

@@ -66,7 +66,11 @@ void readBlockWords(const Block& block, unsigned axis_mask, BlockWords& out) {
   out.axis_column = 0;
   for (const Word& w : block.words) {
     const char c = w.letter;
-    if (c < 'A' || c > 'Z') failAt(block, w.column, std::string("Bad character used"));
+    if (c == '$') {  // spindle select: this machine has one spindle, $0
+      if (w.value != 0.0) failAt(block, w.column, "Invalid spindle ($) number");
+      continue;
+    }
+    if (c < 'A' || c > 'Z') failAt(block, w.column, std::string("Bad character '") + c + "' used");
     if (c == 'G') {
       addG(block, w, out);
       continue;

@@ -109,9 +109,11 @@ void BlockExecutor::cannedCycle(Step& st, int motion) {
     if (w.has(l2)) cj = st.lenWord(l2);
     if (w.has(l3)) ck = st.lenWord(l3);
   }
+  double current_cc = s.current[axes.normal];
   if (old_cc < r) {  // below the R plane: straight up to it first
     cycleMove(st, MotionType::kRapid, s.current[axes.first], s.current[axes.second], r);
     old_cc = r;
+    current_cc = r;
   }
   const double clear = s.retract_to_r ? r : old_cc;
   const double middle_k = s.incremental ? cc + ck : ck;
@@ -133,8 +135,15 @@ void BlockExecutor::cannedCycle(Step& st, int motion) {
   for (int n = 0; n < repeats; ++n) {
     aa += aa_inc;
     bb += bb_inc;
-    cycleMove(st, MotionType::kRapid, aa, bb, old_cc);
-    if (old_cc != r) cycleMove(st, MotionType::kRapid, aa, bb, r);
+    // The first positioning move runs at the current level, later ones at
+    // the clearance level (LinuxCNC 2.9's CYCLE_MACRO).
+    if (n == 0 && current_cc > r) {
+      cycleMove(st, MotionType::kRapid, aa, bb, current_cc);
+      cycleMove(st, MotionType::kRapid, aa, bb, r);
+    } else {
+      cycleMove(st, MotionType::kRapid, aa, bb, clear);
+      if (clear > r) cycleMove(st, MotionType::kRapid, aa, bb, r);
+    }
     switch (motion) {
       case 810:
         cycleMove(st, MotionType::kFeed, aa, bb, cc);
@@ -208,7 +217,6 @@ void BlockExecutor::cannedCycle(Step& st, int motion) {
       default:
         break;
     }
-    old_cc = clear;
   }
   // As LinuxCNC: the tool is taken to be at the clearance level (after G88 the
   // operator retracts it by hand).

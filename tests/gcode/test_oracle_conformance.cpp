@@ -57,7 +57,7 @@ const auto* const kSummary = ::testing::AddGlobalTestEnvironment(new SummaryPrin
 
 MotionType typeOf(const std::string& t) {
   if (t == "rapid") return MotionType::kRapid;
-  if (t == "feed") return MotionType::kFeed;
+  if (t == "feed" || t == "probe") return MotionType::kFeed;  // G38.x: a feed move to the target
   return MotionType::kArc;
 }
 
@@ -130,7 +130,7 @@ TEST_P(OracleConformance, MatchesRs274Trace) {
   for (std::string row; std::getline(trace, row);) {
     nlohmann::json rec = nlohmann::json::parse(row);
     const std::string type = rec["type"];
-    if (type == "rapid" || type == "feed" || type == "arc") {
+    if (type == "rapid" || type == "feed" || type == "arc" || type == "probe") {
       applyKnownQuirks(c.name, rec);
       want.push_back(rec);
     } else if (type == "error") {
