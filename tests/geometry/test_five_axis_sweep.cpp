@@ -1,0 +1,246 @@
+// Moves that turn the tool axis: adaptive steps keep the sweep within the tolerance of
+// a very fine stamping, fixed steps are exactly the union of their translations.
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "sim/geometry/pose_interpolation.h"
+#include "sim/geometry/signed_distance.h"
+#include "sim/geometry/swept_volume.h"
+#include "tests/geometry/geometry_test_support.h"
+
+namespace mdhd::geom {
+namespace {
+
+using testing::makeTool;
+
+glm::dvec3 tilted(double degrees, const glm::dvec3& towards) {
+  const double a = degrees * testing::kPi / 180.0;
+  return glm::normalize(std::cos(a) * glm::dvec3(0, 0, 1) + std::sin(a) * glm::normalize(towards));
+}
+
+// Signed distance to the continuous motion: dense stamps, then a golden-section
+// refinement between the neighbours of the best stamp.
+struct Reference {
+  const ToolPart& part;
+  ToolPose a;
+  ToolPose b;
+  int stamps = 300;
+
+  double sdAt(double f, const glm::dvec3& p) const {
+    return signedDistance(part, interpolatePose(a, b, f), p);
+  }
+  double operator()(const glm::dvec3& p) const {
+    int best = 0;
+    double d = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= stamps; ++k) {
+      const double dk = sdAt(double(k) / stamps, p);
+      if (dk < d) d = dk, best = k;
+    }
+    const double lo = std::max(0, best - 1) / double(stamps);
+    const double hi = std::min(stamps, best + 1) / double(stamps);
+    return std::min(d,
+                    testing::minimiseConvex([&](double s) { return sdAt(lo + s * (hi - lo), p); }));
+  }
+};
+
+struct Agreement {
+  int decided = 0;
+  int wrong = 0;
+};
+
+// Samples the lines of a grid over the sweep's box; a sample farther than `band` from
+// the reference surface must be inside an interval exactly when it is inside.
+Agreement compare(const SweptVolume& s, const Reference& ref, double band) {
+  Agreement r;
+  const Aabb b = s.bounds();
+  std::vector<Interval> out;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int i1 = (axis + 1) % 3;
+    const int i2 = (axis + 2) % 3;
+    const double du = (b.hi[i1] - b.lo[i1]) / 6.0;
+    const double dv = (b.hi[i2] - b.lo[i2]) / 6.0;
+    for (double u = b.lo[i1] + du / 3; u < b.hi[i1]; u += du)
+      for (double v = b.lo[i2] + dv / 3; v < b.hi[i2]; v += dv) {
+        out.clear();
+        s.lineIntervals(axis, u, v, out);
+        for (double t = b.lo[axis]; t <= b.hi[axis]; t += 0.5) {
+          glm::dvec3 p;
+          p[axis] = t, p[i1] = u, p[i2] = v;
+          const double d = ref(p);
+          if (std::abs(d) <= band) continue;
+          bool in = false;
+          for (const Interval& iv : out) in = in || (t >= iv.lo && t <= iv.hi);
+          ++r.decided;
+          r.wrong += in != (d < 0);
+        }
+      }
+  }
+  return r;
+}
+
+TEST(FiveAxisSweep, AdaptiveStepsStayWithinTheTolerance) {
+  const double tol = 0.01;
+  for (ToolShape shape : {ToolShape::kBall, ToolShape::kFlat}) {
+    const ToolPart part = makeToolPart(makeTool(shape), ToolPartKind::kCutter);
+    const ToolPose a{{0, 0, 0}, {0, 0, 1}};
+    const ToolPose b{{4, 2, -1}, tilted(30, {1, 0.5, 0})};
+    const SweptVolume s = SweptVolume::between(part, a, b, 0, tol);
+    EXPECT_LE(s.errorBound(), tol);
+    EXPECT_GT(s.translations().size(), 10u);
+    const Agreement r = compare(s, Reference{part, a, b}, tol + 1e-4);
+    EXPECT_EQ(r.wrong, 0) << toolShapeName(shape);
+    EXPECT_GT(r.decided, 1000);
+    // The comparison can tell: one coarse step is off by more than the tolerance.
+    const SweptVolume coarse = SweptVolume::between(part, a, b, 1, tol);
+    EXPECT_GT(compare(coarse, Reference{part, a, b}, tol + 1e-4).wrong, 0);
+  }
+}
+
+TEST(FiveAxisSweep, TurningAboutTheTipAlone) {
+  const double tol = 0.005;
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kBull), ToolPartKind::kCutter);
+  const ToolPose a{{1, 1, 1}, tilted(-20, {0, 1, 0})};
+  const ToolPose b{{1, 1, 1}, tilted(25, {0.3, 1, 0})};
+  const SweptVolume s = SweptVolume::between(part, a, b, 0, tol);
+  EXPECT_LE(s.errorBound(), tol);
+  const Agreement r = compare(s, Reference{part, a, b}, tol + 1e-4);
+  EXPECT_EQ(r.wrong, 0);
+  EXPECT_GT(r.decided, 1000);
+}
+
+TEST(FiveAxisSweep, SegmentCountFollowsTheChordBound) {
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kBall), ToolPartKind::kCutter);
+  const double reach = part.reach();  // hypot(3, 12)
+  EXPECT_NEAR(reach, std::hypot(3.0, 12.0), 1e-12);
+  const ToolPose a{{0, 0, 0}, {0, 0, 1}};
+  const ToolPose b{{0, 0, 0}, tilted(30, {1, 0, 0})};
+  // n >= theta / (4 asin(tol / (2 reach)))
+  for (double tol : {0.1, 0.01, 0.001}) {
+    const int n = sweepSegments(part, a, b, 0, tol);
+    const double need = (testing::kPi / 6) / (4 * std::asin(tol / (2 * reach)));
+    EXPECT_EQ(n, static_cast<int>(std::ceil(need))) << tol;
+    EXPECT_LE(2 * reach * std::sin(testing::kPi / 6 / (4 * n)), tol * (1 + 1e-12));
+  }
+  EXPECT_EQ(sweepSegments(part, a, b, 7, 0.0), 7);
+  EXPECT_EQ(sweepSegments(part, a, {{5, 0, 0}, {0, 0, 1}}, 0, 0.0), 1);  // a translation
+}
+
+TEST(FiveAxisSweep, FixedStepsAreExactlyTheUnionOfTheirTranslations) {
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kDrill), ToolPartKind::kCutter);
+  const ToolPose a{{0, 0, 0}, tilted(10, {0, 1, 0})};
+  const ToolPose b{{6, 1, -2}, tilted(40, {1, 0, 0})};
+  const SweptVolume s = SweptVolume::between(part, a, b, 4, 0.0);
+  const auto& trs = s.translations();
+  ASSERT_EQ(trs.size(), 5u);  // half, three whole, half
+  EXPECT_EQ(trs.front().from, a.tip);
+  EXPECT_EQ(trs.back().to, b.tip);
+  EXPECT_LT(glm::length(trs.front().axis - a.axis), 1e-15);
+  EXPECT_LT(glm::length(trs.back().axis - b.axis), 1e-15);
+  std::vector<SweptVolume> parts;
+  for (const Translation& tr : trs) {
+    const ToolPose ends[2] = {{tr.from, tr.axis}, {tr.to, tr.axis}};
+    parts.emplace_back(part, ends);
+    ASSERT_EQ(parts.back().translations().size(), 1u);
+    EXPECT_EQ(parts.back().translations()[0].to, tr.to);
+  }
+  const Aabb box = s.bounds();
+  std::vector<Interval> got;
+  std::vector<Interval> want;
+  int lines = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int i1 = (axis + 1) % 3;
+    const int i2 = (axis + 2) % 3;
+    for (double u = box.lo[i1]; u < box.hi[i1]; u += 0.37)
+      for (double v = box.lo[i2]; v < box.hi[i2]; v += 0.37) {
+        got.clear();
+        want.clear();
+        s.lineIntervals(axis, u, v, got);
+        for (const SweptVolume& p : parts) p.lineIntervals(axis, u, v, want);
+        // Union of the separate answers, merged the plain way.
+        std::sort(want.begin(), want.end(), [](auto& x, auto& y) { return x.lo < y.lo; });
+        std::vector<Interval> merged;
+        for (const Interval& iv : want) {
+          if (!merged.empty() && iv.lo <= merged.back().hi)
+            merged.back().hi = std::max(merged.back().hi, iv.hi);
+          else
+            merged.push_back(iv);
+        }
+        ASSERT_EQ(got.size(), merged.size());
+        for (size_t i = 0; i < got.size(); ++i) {
+          EXPECT_EQ(got[i].lo, merged[i].lo);
+          EXPECT_EQ(got[i].hi, merged[i].hi);
+        }
+        lines += !got.empty();
+      }
+  }
+  EXPECT_GT(lines, 500);
+}
+
+TEST(FiveAxisSweep, ThreeAxisStepsMergeIntoOneExactTranslation) {
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kFlat), ToolPartKind::kCutter);
+  const SweptVolume s =
+      SweptVolume::between(part, {{0, 0, 0}, {0, 0, 1}}, {{3, 4, -1}, {0, 0, 1}}, 10, 0.01);
+  ASSERT_EQ(s.translations().size(), 1u);
+  EXPECT_EQ(s.translations()[0].to, glm::dvec3(3, 4, -1));
+  EXPECT_EQ(s.errorBound(), 0.0);
+}
+
+TEST(FiveAxisSweep, BadArgumentsAreRefused) {
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kBall), ToolPartKind::kCutter);
+  const ToolPose up{{0, 0, 0}, {0, 0, 1}};
+  const ToolPose tiltedPose{{0, 0, 0}, tilted(10, {1, 0, 0})};
+  EXPECT_THROW(SweptVolume::between(part, up, {{0, 0, 0}, {0, 0, -1}}, 0, 0.01),
+               std::invalid_argument);  // opposite axes
+  EXPECT_THROW(SweptVolume::between(part, up, tiltedPose, 0, 0.0), std::invalid_argument);
+  EXPECT_THROW(SweptVolume::between(part, up, tiltedPose, 0, -1.0), std::invalid_argument);
+  EXPECT_THROW(SweptVolume::between(part, up, tiltedPose, 0, 1e-12), std::invalid_argument);
+  EXPECT_THROW(SweptVolume::between(part, up, tiltedPose, -2, 0.01), std::invalid_argument);
+  EXPECT_THROW(SweptVolume::between(part, up, {{0, 0, 0}, {0, 0, 0}}, 0, 0.01),
+               std::invalid_argument);  // no axis
+  EXPECT_THROW(SweptVolume::between(part, up, {{std::nan(""), 0, 0}, {0, 0, 1}}, 0, 0.01),
+               std::invalid_argument);
+  EXPECT_THROW(SweptVolume(part, std::span<const ToolPose>()), std::invalid_argument);
+  // An axis that is not unit length is normalised, not refused.
+  const SweptVolume s = SweptVolume::at(part, {{0, 0, 0}, {0, 0, 5}});
+  std::vector<Interval> out;
+  s.lineIntervals(2, 0.0, 0.0, out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_DOUBLE_EQ(out[0].hi, 12.0);
+  out.clear();
+  s.lineIntervals(3, 0.0, 0.0, out);  // no such axis: nothing
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(FiveAxisSweep, ConcurrentCallsGiveTheSameAnswers) {
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kBull), ToolPartKind::kCutter);
+  const SweptVolume s = SweptVolume::between(part, {{0, 0, 0}, {0, 0, 1}},
+                                             {{5, 0, 0}, tilted(20, {0, 1, 0})}, 0, 0.01);
+  auto run = [&](std::vector<Interval>& all) {
+    std::vector<Interval> out;
+    for (double u = -5; u < 10; u += 0.25)
+      for (double v = -2; v < 15; v += 0.25) {
+        out.clear();
+        s.lineIntervals(0, u, v, out);
+        all.insert(all.end(), out.begin(), out.end());
+      }
+  };
+  std::vector<Interval> one, two, alone;
+  std::thread t1([&] { run(one); });
+  std::thread t2([&] { run(two); });
+  t1.join();
+  t2.join();
+  run(alone);
+  ASSERT_EQ(one.size(), alone.size());
+  ASSERT_EQ(two.size(), alone.size());
+  EXPECT_GT(alone.size(), 100u);
+  for (size_t i = 0; i < alone.size(); ++i) {
+    EXPECT_EQ(one[i].lo, alone[i].lo);
+    EXPECT_EQ(two[i].hi, alone[i].hi);
+  }
+}
+
+}  // namespace
+}  // namespace mdhd::geom
