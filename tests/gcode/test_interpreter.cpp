@@ -1,0 +1,303 @@
+// Interpreter features one by one, with exact expected machine values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "oracle_support.h"
+
+namespace mdhd::gcode::testing {
+namespace {
+
+InterpreterConfig baseConfig() {
+  InterpreterConfig c;
+  c.tools.add({1, 50.0, 6.0});
+  c.tools.add({2, 75.0, 10.0});
+  return c;
+}
+
+struct Result {
+  std::vector<RecordedMotion> motions;
+  std::vector<Event> events;
+  std::optional<GcodeError> error;
+  InterpState state;
+};
+
+Result run(const std::string& program, InterpreterConfig config = baseConfig()) {
+  RecordingSink sink;
+  Interpreter interp(std::move(config), sink);
+  Result r;
+  try {
+    interp.run(makeStringSource(program));
+  } catch (const GcodeError& e) {
+    r.error = e;
+  }
+  r.motions = sink.motions;
+  r.events = sink.events;
+  r.state = interp.state();
+  return r;
+}
+
+void expectEnd(const RecordedMotion& m, double x, double y, double z) {
+  EXPECT_NEAR(m.end[kX], x, 1e-9);
+  EXPECT_NEAR(m.end[kY], y, 1e-9);
+  EXPECT_NEAR(m.end[kZ], z, 1e-9);
+}
+
+TEST(InterpreterErrors, TwoCodesOfOneModalGroupNameTheColumn) {
+  const Result r = run("G0 X1\nG0 G1 X2\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Two G codes used from same modal group");
+  EXPECT_EQ(r.error->line(), 2);
+  EXPECT_EQ(r.error->column(), 4);
+  EXPECT_EQ(r.motions.size(), 1u);
+}
+
+TEST(InterpreterErrors, UnknownCodesAndMissingAxes) {
+  Result r = run("G21\nG68 X0\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Unknown g code used");
+  EXPECT_EQ(r.error->column(), 1);
+  r = run("M123\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Unknown m code used");
+  r = run("G0 X1 W5\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Bad character 'w' used");
+  EXPECT_EQ(r.error->column(), 7);
+  InterpreterConfig xyz = baseConfig();
+  xyz.axis_mask = 0x7;  // a 3-axis machine: A is not there
+  r = run("G0 X1 A5\n", xyz);
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Bad character 'a' used");
+  r = run("X1\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Cannot use axis values without a g code that uses them");
+  r = run("G80 X1\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Cannot use axis values with G80");
+}
+
+TEST(InterpreterErrors, RejectedBlockChangesNothing) {
+  // G20 and G91 come before the failing arc in execution order; none may stick.
+  RecordingSink sink;
+  Interpreter interp(baseConfig(), sink);
+  EXPECT_THROW(interp.run(makeStringSource("G0 X1\nG20 G91 G2 X5 Y0 I1 J0 F100\n")), GcodeError);
+  EXPECT_FALSE(interp.state().inch);
+  EXPECT_FALSE(interp.state().incremental);
+  EXPECT_EQ(interp.state().motion, 0);
+  EXPECT_DOUBLE_EQ(interp.state().current[kX], 1.0);
+}
+
+TEST(InterpreterErrors, FeedRules) {
+  Result r = run("G1 X1\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Cannot do G1 with zero feed rate");
+  r = run("G93 G1 X10 F2\nG1 X20\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "F word missing with inverse time g1 move");
+  EXPECT_EQ(r.error->line(), 2);
+  r = run("T42 M6\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Requested tool 42 not found in the tool table");
+  EXPECT_EQ(r.error->column(), 1);
+}
+
+TEST(Interpreter, UnitsAreMillimetresOnOutput) {
+  const Result r = run("G20 G0 X1 Y2 Z0.5\nG1 X2 F10\nG21 G0 X0\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 3u);
+  expectEnd(r.motions[0], 25.4, 50.8, 12.7);
+  expectEnd(r.motions[1], 50.8, 50.8, 12.7);
+  EXPECT_NEAR(r.motions[1].feed, 254.0, 1e-9);
+  expectEnd(r.motions[2], 0.0, 50.8, 12.7);
+}
+
+TEST(Interpreter, WorkOffsetsFromConfigAndG10) {
+  InterpreterConfig c = baseConfig();
+  c.work_offsets[0] = {100, 50, -20};
+  c.work_offsets[1] = {10, 10, 10};
+  const Result r =
+      run("G54 G0 X1 Y2 Z3\nG55 G0 X0 Y0 Z0\nG10 L2 P2 X-5\nG0 X1\nG10 L20 P2 X0\nG0 Y1\n", c);
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 4u);
+  expectEnd(r.motions[0], 101, 52, -17);
+  expectEnd(r.motions[1], 10, 10, 10);
+  expectEnd(r.motions[2], -4, 10, 10);  // G10 L2 P2 X-5: G55 X zero now at machine -5
+  expectEnd(r.motions[3], -4, 11, 10);  // L20 made the current X read 0: no X motion
+  EXPECT_DOUBLE_EQ(r.state.g5x[1][kX], -4.0);
+}
+
+TEST(Interpreter, RotatedCoordinateSystem) {
+  const Result r = run("G10 L2 P1 X10 R90\nG0 X10 Y0\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 1u);
+  expectEnd(r.motions[0], 10, 10, 0);
+}
+
+TEST(Interpreter, G92AndG53) {
+  const Result r = run("G0 X10 Y10\nG92 X0 Y0\nG0 X1\nG53 G0 X0\nG92.1\nG0 X3\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 4u);
+  expectEnd(r.motions[1], 11, 10, 0);
+  expectEnd(r.motions[2], 0, 10, 0);
+  expectEnd(r.motions[3], 3, 10, 0);
+}
+
+TEST(Interpreter, G28GoesViaIntermediatePointToStoredPosition) {
+  const Result r = run("G0 X5 Y6 Z7\nG28.1\nG0 X0 Y0 Z0\nG91 G28 Z2\nG90 G28\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 6u);
+  expectEnd(r.motions[2], 0, 0, 2);  // intermediate, incremental
+  expectEnd(r.motions[3], 0, 0, 7);  // only Z goes to the stored position
+  expectEnd(r.motions[4], 0, 0, 7);  // no axis words: intermediate = here
+  expectEnd(r.motions[5], 5, 6, 7);  // then all axes
+}
+
+TEST(Interpreter, ToolLengthOffsetKeepsTheMachineStill) {
+  const Result r = run("T1 M6\nG43 H1\nG0 X0 Y0 Z10\nG49\nG0 X1\nG43.1 Z-2.5\nG0 Z0\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 3u);
+  expectEnd(r.motions[0], 0, 0, 60);
+  expectEnd(r.motions[1], 1, 0, 60);  // G49 does not move Z
+  expectEnd(r.motions[2], 1, 0, -2.5);
+  EXPECT_EQ(r.motions[0].comp, false);
+  EXPECT_EQ(r.events.size(), 2u);  // tool change, program end
+  EXPECT_EQ(r.events[0].type, EventType::kToolChange);
+  EXPECT_EQ(r.events[0].tool, 1);
+}
+
+TEST(Interpreter, TcpModeOutputsTipInWorkFrame) {
+  InterpreterConfig c = baseConfig();
+  c.work_offsets[0] = {100, 0, -50};
+  RecordingSink sink;
+  Interpreter interp(c, sink);
+  interp.run(makeStringSource("T1 M6\nG43.4 H1\nG0 X1 Y2 Z3 A30\nG49\nG0 Z5\n"));
+  ASSERT_EQ(sink.motions.size(), 2u);
+  const RecordedMotion& m = sink.motions[0];
+  expectEnd(m, 101, 2, -47);  // no tool length on Z under G43.4
+  EXPECT_DOUBLE_EQ(m.end[kA], 30.0);
+  expectEnd(sink.motions[1], 101, 2, -45);
+  const Result arc = run("T1 M6\nG43.4 H1\nG2 X0 Y0 I1 J0 F100\n");
+  ASSERT_TRUE(arc.error);
+  EXPECT_STREQ(arc.error->what(), "Arcs are not supported under G43.4");
+}
+
+TEST(Interpreter, TcpFlagIsSetOnMotions) {
+  struct Flag : MotionSink {
+    std::vector<bool> tcp;
+    void motion(const Motion& m) override { tcp.push_back(m.tcp); }
+  } sink;
+  Interpreter interp(baseConfig(), sink);
+  interp.run(makeStringSource("T1 M6\nG0 X1\nG43.4 H1\nG0 X2\nG49\nG0 X3\n"));
+  EXPECT_EQ(sink.tcp, (std::vector<bool>{false, true, false}));
+}
+
+TEST(Interpreter, InverseTimeFeedIsTheRateTheMoveNeeds) {
+  const Result r = run("G93 G1 X10 F2\nG1 A90 F4\nG2 X20 Y0 I5 J0 F1\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 3u);
+  EXPECT_NEAR(r.motions[0].feed, 20.0, 1e-9);   // 10 mm in 1/2 min
+  EXPECT_NEAR(r.motions[1].feed, 360.0, 1e-9);  // pure rotary: deg/min
+  EXPECT_NEAR(r.motions[2].feed, 5 * M_PI, 1e-9);
+}
+
+TEST(Interpreter, ArcsInAllPlanesWithTurns) {
+  const Result r =
+      run("F100\nG0 X10\nG3 X10 Y0 Z-5 I-10 J0 P2\nG18 G0 X10 Y0 Z0\nG2 X0 Z10 I-10 K0\n"
+          "G19 G0 X0 Y10 Z0\nG3 Y0 Z10 R10\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 6u);
+  EXPECT_EQ(r.motions[1].turn, 2);
+  EXPECT_EQ(r.motions[1].plane, Plane::kXY);
+  EXPECT_NEAR(r.motions[1].center[0], 0.0, 1e-12);
+  EXPECT_EQ(r.motions[3].plane, Plane::kXZ);
+  EXPECT_EQ(r.motions[3].turn, -1);
+  EXPECT_NEAR(r.motions[3].center[0], 0.0, 1e-12);  // Z
+  EXPECT_NEAR(r.motions[3].center[1], 0.0, 1e-12);  // X
+  EXPECT_EQ(r.motions[5].plane, Plane::kYZ);
+  EXPECT_EQ(r.motions[5].turn, 1);
+  // R10 from (Y10,Z0) to (Y0,Z10) ccw in YZ: the short arc's centre is (0,0)
+  EXPECT_NEAR(r.motions[5].center[0], 0.0, 1e-9);
+  EXPECT_NEAR(r.motions[5].center[1], 0.0, 1e-9);
+  const Result bad = run("F100\nG2 X20 Y0 I5 J0\n");
+  ASSERT_TRUE(bad.error);
+  EXPECT_EQ(std::string(bad.error->what()).rfind("Radius to end of arc differs", 0), 0u);
+}
+
+TEST(Interpreter, CannedCycleInXZPlane) {
+  // G18: the cycle drills along Y; X/Z position, R and the bottom are Y values.
+  const Result r = run("G18 G0 X0 Y20 Z0\nG98 G81 X5 Z6 Y-4 R2 F50\nG80\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 5u);
+  expectEnd(r.motions[1], 5, 20, 6);  // positioning at the initial level
+  expectEnd(r.motions[2], 5, 2, 6);   // down to R
+  expectEnd(r.motions[3], 5, -4, 6);  // feed to the bottom
+  EXPECT_EQ(r.motions[3].type, MotionType::kFeed);
+  expectEnd(r.motions[4], 5, 20, 6);  // G98: back to the initial level
+}
+
+TEST(Interpreter, CannedCycleIncrementalRepeats) {
+  const Result r = run("G0 X0 Y0 Z10\nG91 G99 G81 X5 Z-4 R-8 L2 F50\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 1u + 4 + 3);
+  expectEnd(r.motions[1], 5, 0, 10);
+  expectEnd(r.motions[2], 5, 0, 2);
+  expectEnd(r.motions[3], 5, 0, -2);
+  expectEnd(r.motions[5], 10, 0, 2);
+}
+
+TEST(Interpreter, CutterCompEntryAndOutsideCorner) {
+  const Result r =
+      run("F100 T1 M6\nG0 X-10 Y0\nG41 D1 G1 X0 Y0\nG1 X10\nG1 Y-10\nG40 G1 X20 Y-20\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  // entry line, the corner arc at (10,0), the side, exit
+  ASSERT_EQ(r.motions.size(), 6u);
+  expectEnd(r.motions[1], 0, 3, 0);  // entry to the left of the first line
+  EXPECT_EQ(r.motions[1].line, 4);   // released when line 4 was read
+  expectEnd(r.motions[2], 10, 3, 0);
+  EXPECT_EQ(r.motions[3].type, MotionType::kArc);  // round the convex corner
+  EXPECT_EQ(r.motions[3].turn, -1);
+  expectEnd(r.motions[3], 13, 0, 0);
+  expectEnd(r.motions[4], 13, -10, 0);
+  EXPECT_TRUE(r.motions[4].comp);
+  expectEnd(r.motions[5], 20, -20, 0);
+  EXPECT_FALSE(r.motions[5].comp);
+}
+
+TEST(Interpreter, CutterCompInsideCornerShortensTheMove) {
+  const Result r = run("F100 T1 M6\nG0 X-10 Y0\nG42 D1 G1 X0 Y0\nG1 X10\nG1 Y-10\nG40 G0 X30\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  // right of X+ then turning right is an inside corner: no arc, lines meet at (7,-3)
+  ASSERT_EQ(r.motions.size(), 5u);
+  expectEnd(r.motions[1], 0, -3, 0);
+  expectEnd(r.motions[2], 7, -3, 0);
+  expectEnd(r.motions[3], 7, -10, 0);
+  expectEnd(r.motions[4], 30, -10, 0);
+  EXPECT_EQ(r.motions[4].type, MotionType::kRapid);
+}
+
+TEST(Interpreter, ProgramEndStopsReading) {
+  const Result r = run("G0 X1\nM2\nG0 X5\n");
+  ASSERT_FALSE(r.error);
+  ASSERT_EQ(r.motions.size(), 1u);
+  EXPECT_EQ(r.events.back().type, EventType::kProgramEnd);
+}
+
+TEST(Interpreter, PredefinedParametersAndPositionParameters) {
+  const Result r = run("G20 G0 X1\n#1=#<_imperial>\n#2=#<_x>\n#3=#5420\nG21\nG0 X[#1*10+#2+#3]\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 2u);
+  expectEnd(r.motions[1], 12, 0, 0);  // 1*10 + 1 + 1
+}
+
+TEST(ToolTable, ParsesLinuxCncFormat) {
+  const ToolTable t = parseToolTable("; comment\nT1 P1 Z50.8 D6.35 ;mill\nT7 P5 Z1 D0.5\n", 25.4);
+  ASSERT_EQ(t.entries().size(), 2u);
+  EXPECT_DOUBLE_EQ(t.find(1)->length, 50.8 * 25.4);
+  EXPECT_DOUBLE_EQ(t.find(7)->diameter, 0.5 * 25.4);
+  EXPECT_EQ(t.find(3), nullptr);
+  EXPECT_THROW(parseToolTable("T1 Zabc\n"), GcodeError);
+}
+
+}  // namespace
+}  // namespace mdhd::gcode::testing
