@@ -17,6 +17,8 @@ std::string_view toolShapeName(ToolShape shape);
 struct HolderSection {
   double diameter = 0.0;
   double length = 0.0;
+
+  bool operator==(const HolderSection&) const = default;
 };
 
 struct Tool {
@@ -35,6 +37,8 @@ struct Tool {
   double holderBottom() const;
   // Height of the curved or pointed bottom: R (ball), corner_radius (bull), the cone (drill).
   double tipHeight() const;
+
+  bool operator==(const Tool&) const = default;
 };
 
 // What is wrong with a tool: the field as the job names it ("corner_radius",
