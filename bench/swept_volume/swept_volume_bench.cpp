@@ -1,0 +1,167 @@
+// Figures for the swept volumes: lineIntervals calls per second over every grid line
+// (0.1 mm, three directions) of one step's box, per tool shape, for a translational
+// and a 5-axis step, against a plain ray-sphere intersection over the same lines.
+//
+//   bench_swept_volume [--seconds S]   (S per measurement, default 0.5)
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "sim/geometry/swept_volume.h"
+#include "sim/geometry/tool_part.h"
+
+namespace {
+
+using namespace mdhd::geom;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kGrid = 0.1;
+
+struct Line {
+  int axis;
+  double u, v;
+};
+
+std::vector<Line> gridLines(const Aabb& b) {
+  std::vector<Line> lines;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int i1 = (axis + 1) % 3;
+    const int i2 = (axis + 2) % 3;
+    for (double u = std::floor(b.lo[i1] / kGrid) * kGrid; u <= b.hi[i1]; u += kGrid)
+      for (double v = std::floor(b.lo[i2] / kGrid) * kGrid; v <= b.hi[i2]; v += kGrid)
+        lines.push_back({axis, u, v});
+  }
+  return lines;
+}
+
+struct Rate {
+  double callsPerSecond = 0;
+  double hitFraction = 0;
+};
+
+// Calls `call` on every line, over and over, for `seconds`.
+Rate measure(const std::vector<Line>& lines, double seconds,
+             const std::function<void(const Line&, std::vector<Interval>&)>& call) {
+  std::vector<Interval> out;
+  out.reserve(16);
+  long calls = 0;
+  long hits = 0;
+  const auto start = Clock::now();
+  double elapsed = 0;
+  do {
+    for (const Line& l : lines) {
+      out.clear();
+      call(l, out);
+      hits += !out.empty();
+    }
+    calls += static_cast<long>(lines.size());
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  } while (elapsed < seconds);
+  return {calls / elapsed, double(hits) / calls};
+}
+
+Tool benchTool(ToolShape shape) {
+  Tool t;
+  t.number = 1;
+  t.shape = shape;
+  t.diameter = 6.0;
+  t.flute_length = 18.0;
+  t.length = 60.0;
+  t.shank_diameter = 6.0;
+  if (shape == ToolShape::kBull) t.corner_radius = 1.0;
+  if (shape == ToolShape::kDrill) t.tip_angle = 118.0;
+  return t;
+}
+
+// Sweeps only the lowest 6 mm of the flutes' box, as a cut into a stock surface would.
+Aabb lowerBox(const SweptVolume& s) {
+  Aabb b = s.bounds();
+  b.hi.z = std::min(b.hi.z, b.lo.z + 6.0);
+  return b;
+}
+
+// Steps built per second (the per-step precomputation).
+double buildRate(const ToolPart& part, const ToolPose& a, const ToolPose& b, double seconds) {
+  long n = 0;
+  double sink = 0;
+  const auto start = Clock::now();
+  double elapsed = 0;
+  do {
+    for (int i = 0; i < 100; ++i) {
+      const SweptVolume s = SweptVolume::between(part, a, b, 0, 0.01);
+      sink += s.bounds().hi.x;
+    }
+    n += 100;
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  } while (elapsed < seconds);
+  if (sink == 42.0) std::puts("");
+  return n / elapsed;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double seconds = 0.5;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) {
+      seconds = std::atof(argv[++i]);
+    } else {
+      std::fprintf(stderr, "usage: %s [--seconds S]\n", argv[0]);
+      return 2;
+    }
+  }
+  if (!(seconds > 0)) {
+    std::fprintf(stderr, "--seconds must be > 0\n");
+    return 2;
+  }
+
+  // Baseline: a 3 mm sphere, the lines of its box, one ray-sphere solve each.
+  const glm::dvec3 c(0.03, 0.07, 3.01);
+  const double r = 3.0;
+  const std::vector<Line> sphereLines = gridLines(Aabb{c - r, c + r});
+  const Rate base = measure(sphereLines, seconds, [&](const Line& l, std::vector<Interval>& out) {
+    const int i1 = (l.axis + 1) % 3;
+    const int i2 = (l.axis + 2) % 3;
+    const double du = l.u - c[i1];
+    const double dv = l.v - c[i2];
+    const double h2 = r * r - du * du - dv * dv;
+    if (h2 <= 0) return;
+    const double h = std::sqrt(h2);
+    out.push_back({c[l.axis] - h, c[l.axis] + h});
+  });
+  std::printf("grid %.2f mm, 6 mm tools, %.2f s per figure\n", kGrid, seconds);
+  std::printf("%-34s %12s %8s %10s %8s\n", "case", "calls/s", "hit", "vs sphere", "steps/s");
+  std::printf("%-34s %12.3g %7.0f%% %10s %8s\n", "baseline ray-sphere", base.callsPerSecond,
+              100 * base.hitFraction, "1.00", "-");
+
+  const ToolPose start{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
+  const ToolPose moved{{1.0, 0.4, -0.2}, {0.0, 0.0, 1.0}};
+  const double tilt = 2.0 * std::acos(-1.0) / 180.0;  // 2 degrees in this step
+  const ToolPose turned{{1.0, 0.4, -0.2}, {std::sin(tilt), 0.0, std::cos(tilt)}};
+  for (ToolShape shape :
+       {ToolShape::kBall, ToolShape::kFlat, ToolShape::kBull, ToolShape::kDrill}) {
+    const ToolPart part = makeToolPart(benchTool(shape), ToolPartKind::kCutter);
+    for (const ToolPose* end : {&moved, &turned}) {
+      const SweptVolume s = SweptVolume::between(part, start, *end, 0, 0.01);
+      const std::vector<Line> lines = gridLines(lowerBox(s));
+      const Rate rate = measure(lines, seconds, [&](const Line& l, std::vector<Interval>& out) {
+        s.lineIntervals(l.axis, l.u, l.v, out);
+      });
+      const std::string name =
+          std::string(toolShapeName(shape)) +
+          (end == &moved ? " translation 1.1 mm" : " 5-axis 2 deg, ") +
+          (end == &moved ? "" : std::to_string(s.translations().size()) + " sub");
+      std::printf("%-34s %12.3g %7.0f%% %10.2f %8.3g\n", name.c_str(), rate.callsPerSecond,
+                  100 * rate.hitFraction, rate.callsPerSecond / base.callsPerSecond,
+                  buildRate(part, start, *end, seconds / 4));
+    }
+  }
+  return 0;
+}
