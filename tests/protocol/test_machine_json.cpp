@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <random>
 
 #include "sim/kinematics/kinematics.h"
 
@@ -202,6 +203,71 @@ TEST(MachineJson, PathPrefixIsTheCallers) {
   } catch (const MachineJsonError& e) {
     EXPECT_EQ(e.field(), "job.machine.joints[0].axis");
   }
+}
+
+}  // namespace
+}  // namespace mdhd::protocol
+
+namespace mdhd::protocol {
+namespace {
+
+// Replaces one random node of j (or removes or adds a key) with a random value.
+void mutate(json& j, std::mt19937& rng) {
+  json* node = &j;
+  while ((node->is_object() || node->is_array()) && !node->empty() && rng() % 3 != 0) {
+    auto it = node->begin();
+    std::advance(it, static_cast<long>(rng() % node->size()));
+    node = &*it;
+  }
+  switch (rng() % 8) {
+    case 0:
+      *node = nullptr;
+      break;
+    case 1:
+      *node = static_cast<double>(static_cast<int>(rng() % 2001) - 1000) / 7.0;
+      break;
+    case 2:
+      *node = std::string(1, "XYZABCUVWQx"[rng() % 11]);
+      break;
+    case 3:
+      *node = json::array({1, 0, 0});
+      break;
+    case 4:
+      *node = json::object();
+      break;
+    case 5:
+      *node = (rng() % 2) == 0;
+      break;
+    case 6:
+      if (node->is_object()) (*node)["extra"] = 1;
+      break;
+    default:
+      if (node->is_array() && !node->empty()) node->erase(node->size() - 1);
+      break;
+  }
+}
+
+TEST(MachineJson, MutatedMachinesFailCleanlyOrWork) {
+  std::mt19937 rng(3);
+  const std::vector<json> bases = {readExample("machine-3axis.json"),
+                                   readExample("machine-ac-trunnion.json"),
+                                   readExample("machine-bc-head-table.json")};
+  int accepted = 0;
+  for (int i = 0; i < 3000; ++i) {
+    json j = bases[static_cast<std::size_t>(i) % bases.size()];
+    for (unsigned k = 0; k <= rng() % 3; ++k) mutate(j, rng);
+    try {
+      const kin::Machine m = machineFromJson(j);
+      ++accepted;
+      EXPECT_NO_THROW(kin::Kinematics{m}) << j.dump();
+      EXPECT_EQ(machineToJson(machineFromJson(machineToJson(m))), machineToJson(m));
+    } catch (const MachineJsonError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("machine", 0), 0u) << e.what();
+    }
+  }
+  // Some mutations keep the machine valid (a new name, a changed limit): both paths run.
+  EXPECT_GT(accepted, 50);
+  EXPECT_LT(accepted, 2900);
 }
 
 }  // namespace
