@@ -75,8 +75,9 @@ void addVertexCandidates(const Quadric2& g, const HalfPlane (&h)[4], const bool 
     for (int j = i + 1; j < 4; ++j) {
       if (!live[i] || !live[j]) continue;
       const double det = h[i].nt * h[j].ns - h[i].ns * h[j].nt;
-      const double scale = std::hypot(h[i].nt, h[i].ns) * std::hypot(h[j].nt, h[j].ns);
-      if (std::abs(det) <= 1e-12 * scale) continue;  // parallel edges never meet
+      const double scale2 =
+          (h[i].nt * h[i].nt + h[i].ns * h[i].ns) * (h[j].nt * h[j].nt + h[j].ns * h[j].ns);
+      if (det * det <= 1e-24 * scale2) continue;  // parallel edges never meet
       const double t = (-h[i].k * h[j].ns + h[j].k * h[i].ns) / det;
       const double s = (-h[j].k * h[i].nt + h[i].k * h[j].nt) / det;
       if (g(t, s) <= tol.quadric && inHalfPlanes(h, live, t, s, tol.linear)) ext.add(t);

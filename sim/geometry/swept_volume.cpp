@@ -179,10 +179,12 @@ bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double
 
   double lo = std::numeric_limits<double>::infinity();
   double hi = -lo;
-  for (int i = body.pieceBegin; i < body.pieceEnd; ++i) {
+  enum class Result { kMiss, kHit, kSkipped };
+  auto solve = [&](int i) {
     const SweptPiece& p = pieces_[i];
-    if (u < p.box.lo[i1] || u > p.box.hi[i1] || v < p.box.lo[i2] || v > p.box.hi[i2]) continue;
-    if (p.box.lo[axis] >= lo && p.box.hi[axis] <= hi) continue;  // cannot widen the hull
+    if (u < p.box.lo[i1] || u > p.box.hi[i1] || v < p.box.lo[i2] || v > p.box.hi[i2])
+      return Result::kMiss;
+    if (p.box.lo[axis] >= lo && p.box.hi[axis] <= hi) return Result::kSkipped;  // inside hull
     // g = |r|^2 - alpha - beta z - gamma z^2
     Quadric2 g;
     g.a = k.re2 - p.gamma * k.ze * k.ze;
@@ -197,9 +199,24 @@ bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double
                             {k.ze, -k.zd, z0 - p.z1}};
     double plo = 0.0;
     double phi = 0.0;
-    if (!sectionExtent(g, h, tol, plo, phi)) continue;
+    if (!sectionExtent(g, h, tol, plo, phi)) return Result::kMiss;
     lo = std::min(lo, plo + base);
     hi = std::max(hi, phi + base);
+    return Result::kHit;
+  };
+  // The pieces a line meets are contiguous in the stack (the body's sweep is convex and
+  // the pieces are slabs of it), so after the two ends a walk stops at its first miss
+  // past a hit. Solving both ends first lets the hull skip the middle of a stack.
+  const int top = body.pieceEnd - 1;
+  const int bottom = body.pieceBegin;
+  const bool topHit = solve(top) == Result::kHit;
+  const bool bottomHit = bottom < top && solve(bottom) == Result::kHit;
+  bool hit = topHit || bottomHit;
+  const int step = topHit ? -1 : 1;
+  for (int i = topHit ? top - 1 : bottom + 1; i > bottom && i < top; i += step) {
+    const Result r = solve(i);
+    if (r == Result::kMiss && hit) break;
+    hit = hit || r == Result::kHit;
   }
   if (!(hi > lo)) return false;
   out = Interval{lo, hi};
