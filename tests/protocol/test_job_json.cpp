@@ -1,0 +1,139 @@
+// The job document codec: every example job reads, and each kind of mistake is
+// reported at the field where it is.
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "protocol/job_json.h"
+
+namespace mdhd::protocol {
+namespace {
+
+using nlohmann::json;
+
+json minimalJob() {
+  return json::parse(R"({
+    "machine_file": "machine-3axis.json",
+    "tools": [{"number": 1, "shape": "flat", "diameter": 6, "flute_length": 20, "length": 50,
+               "shank_diameter": 6, "holder": [{"diameter": 30, "length": 25}]}],
+    "stock": {"box": {"min": [0, 0, -40], "max": [100, 80, 0]}},
+    "program": "G0 X0\nM2\n"
+  })");
+}
+
+std::string fieldOfError(const json& j) {
+  try {
+    jobFromJson(j);
+  } catch (const FieldError& e) {
+    return e.field();
+  }
+  return "(no error)";
+}
+
+TEST(JobJson, ReadsEveryExampleJob) {
+  for (const char* name : {"contour-3axis", "crash-3axis", "side-drill-ac", "donut-bc"}) {
+    std::ifstream in(std::string(MDHD_SHARED_DIR) + "/examples/" + name + ".json");
+    ASSERT_TRUE(in) << name;
+    std::stringstream text;
+    text << in.rdbuf();
+    const Job job = jobFromJson(parseJsonText(text.str()));
+    EXPECT_FALSE(job.machine_file.empty()) << name;
+    EXPECT_FALSE(job.program_file.empty()) << name;
+    EXPECT_EQ(job.tools.size(), 1u) << name;
+  }
+}
+
+TEST(JobJson, Defaults) {
+  const Job job = jobFromJson(minimalJob());
+  EXPECT_DOUBLE_EQ(job.options.density, 10.0);
+  EXPECT_EQ(job.options.steps, 0);
+  EXPECT_DOUBLE_EQ(job.options.tolerance, 0.01);
+  EXPECT_EQ(job.options.ruleset, (std::vector<std::string>{"FEFS-FFS", "CTD", "SPT", "RS"}));
+  EXPECT_EQ(job.options.seed, 1u);
+  EXPECT_TRUE(job.options.three_way);
+  EXPECT_DOUBLE_EQ(job.options.contactTolerance(), 0.05);
+  EXPECT_EQ(job.stock.lo.z, -40.0);
+  EXPECT_EQ(job.stock.hi.x, 100.0);
+  for (const auto& w : job.work_offsets) EXPECT_EQ(w, (std::array<double, 3>{0, 0, 0}));
+}
+
+TEST(JobJson, WorkOffsetsAndFixtures) {
+  json j = minimalJob();
+  j["work_offsets"] = {{"G55", {1, 2, 3}}, {"G59.3", {-4, 5, -6}}};
+  j["fixtures"] = json::parse(R"([{"box": {"min": [-10, -10, -60], "max": [110, 90, -40]}},
+    {"cylinder": {"base": [1, 2, 3], "axis": [0, 0, 2], "radius": 4, "height": 5}}])");
+  const Job job = jobFromJson(j);
+  EXPECT_EQ(job.work_offsets[1], (std::array<double, 3>{1, 2, 3}));
+  EXPECT_EQ(job.work_offsets[8], (std::array<double, 3>{-4, 5, -6}));
+  ASSERT_EQ(job.fixtures.size(), 2u);
+  EXPECT_EQ(job.fixtures[0].kind, Fixture::Kind::kBox);
+  EXPECT_EQ(job.fixtures[1].kind, Fixture::Kind::kCylinder);
+  EXPECT_DOUBLE_EQ(job.fixtures[1].axis.z, 1.0);  // normalised
+}
+
+TEST(JobJson, ErrorsNameTheField) {
+  json j = minimalJob();
+  j["stock"]["box"]["max"][2] = -50;
+  EXPECT_EQ(fieldOfError(j), "stock.box");
+
+  j = minimalJob();
+  j["options"] = {{"density", -1}};
+  EXPECT_EQ(fieldOfError(j), "options.density");
+
+  j = minimalJob();
+  j["options"] = {{"ruleset", {"FEFS-FFS", "XYZ"}}};
+  EXPECT_EQ(fieldOfError(j), "options.ruleset[1]");
+
+  j = minimalJob();
+  j["options"] = {{"densty", 5}};
+  EXPECT_EQ(fieldOfError(j), "options.densty");
+
+  j = minimalJob();
+  j["work_offsets"] = {{"G60", {0, 0, 0}}};
+  EXPECT_EQ(fieldOfError(j), "work_offsets.G60");
+
+  j = minimalJob();
+  j["tools"][0]["diameter"] = "six";
+  EXPECT_EQ(fieldOfError(j), "tools[0].diameter");
+
+  j = minimalJob();
+  j["tools"].push_back(j["tools"][0]);
+  EXPECT_EQ(fieldOfError(j), "tools[1].number");
+
+  j = minimalJob();
+  j.erase("program");
+  EXPECT_EQ(fieldOfError(j), "program");
+
+  j = minimalJob();
+  j["machine"] = {{"name", "x"}};
+  EXPECT_EQ(fieldOfError(j), "machine");  // both machine and machine_file
+
+  j = minimalJob();
+  j["fixtures"] = json::parse(
+      R"([{"cylinder": {"base": [0,0,0], "axis": [0,0,0], "radius": 1, "height": 1}}])");
+  EXPECT_EQ(fieldOfError(j), "fixtures[0].cylinder.axis");
+
+  j = minimalJob();
+  j["options"] = {{"seed", -3}};
+  EXPECT_EQ(fieldOfError(j), "options.seed");
+}
+
+TEST(JobJson, MachineByNameIsKept) {
+  json j = minimalJob();
+  j.erase("machine_file");
+  j["machine"] = "3-axis vertical mill";
+  EXPECT_EQ(jobFromJson(j).machine_name, "3-axis vertical mill");
+}
+
+TEST(JobJson, SyntaxErrorsGiveLineAndColumn) {
+  try {
+    parseJsonText("{\n  \"tools\": [1, 2,,]\n}");
+    FAIL() << "no error";
+  } catch (const FieldError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2, column 18"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mdhd::protocol
