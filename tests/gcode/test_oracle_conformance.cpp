@@ -22,6 +22,11 @@ struct Case {
   double mm_per_unit;
 };
 
+// Test names and failure output show the program, not the bytes of Case.
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.name;
+}
+
 std::vector<Case> allCases() {
   std::vector<Case> cases;
   for (const char* dir : {"programs", "corpus"}) {
