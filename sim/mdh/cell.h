@@ -1,0 +1,30 @@
+#pragma once
+// A node of the kD-tree. Leaves are solid, empty (no grid at all) or partial
+// (a heightmap); inner nodes hold a grid-aligned split plane and two children
+// that share the plane's vertices.
+#include <cstdint>
+#include <memory>
+
+#include "sim/mdh/grid.h"
+#include "sim/mdh/three_map.h"
+
+namespace mdhd::mdh {
+
+enum class CellState : std::uint8_t { kEmpty, kSolid, kPartial, kInner };
+
+struct Cell {
+  GridBox box;
+  CellState state = CellState::kSolid;
+  std::uint64_t id = 0;  // stable identity: the Random-Selection rule's key
+  double volume = 0.0;   // grid units^3
+  int splitAxis = -1;
+  int splitAt = 0;
+  std::unique_ptr<ThreeMap> map;
+  std::unique_ptr<Cell> child[2];
+
+  double boxVolume() const {
+    return double(box.cubes(0)) * double(box.cubes(1)) * double(box.cubes(2));
+  }
+};
+
+}  // namespace mdhd::mdh

@@ -1,0 +1,337 @@
+#include "sim/mdh/cut_cell.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "sim/mdh/direct_splits.h"
+#include "sim/mdh/good_bad_map.h"
+#include "sim/mdh/isolation_splits.h"
+#include "sim/mdh/rng.h"
+#include "sim/mdh/sample_grid.h"
+
+namespace mdhd::mdh {
+
+namespace {
+
+// The direction a solid cell takes when first cut: the stock axis closest to
+// the tool's axis, solid on the side away from the spindle.
+Direction guessDirection(const glm::dvec3& t) {
+  int axis = 2;
+  for (int a = 0; a < 2; ++a)
+    if (std::abs(t[a]) > std::abs(t[axis])) axis = a;
+  if (t[axis] == 0.0) return Direction{2, 1};
+  return Direction{axis, t[axis] > 0 ? 1 : -1};
+}
+
+// The columns (and their one-column ring, whose edges change too) the tool can reach.
+GridBox fastRegion(const Cell& cell, const GridBox& touched, int axis) {
+  GridBox sub = cell.box.intersect(touched);
+  for (int a = 0; a < 3; ++a) {
+    if (a == axis) {
+      sub.lo[a] = cell.box.lo[a];
+      sub.hi[a] = cell.box.hi[a];
+    } else {
+      sub.lo[a] = std::max(cell.box.lo[a], sub.lo[a] - 1);
+      sub.hi[a] = std::min(cell.box.hi[a], sub.hi[a] + 1);
+    }
+  }
+  return sub;
+}
+
+double regionVolume(const ThreeMap& map, const GridBox& sub) {
+  const int u = map.uAxis(), v = map.vAxis();
+  const GridBox& box = map.box();
+  return map.squaresVolume(sub.lo[u] - box.lo[u], sub.hi[u] - box.lo[u], sub.lo[v] - box.lo[v],
+                           sub.hi[v] - box.lo[v]);
+}
+
+void setVolume(Cell& cell, double volume, const CutContext& ctx) {
+  ctx.counters.removed += cell.volume - volume;
+  cell.volume = volume;
+}
+
+// Solid and empty partial cells give their grid back.
+void normalize(Cell& cell) {
+  if (cell.state != CellState::kPartial) return;
+  if (cell.map->allEmpty()) {
+    cell.state = CellState::kEmpty;
+    cell.map.reset();
+    cell.volume = 0.0;
+  } else if (cell.map->allFull()) {
+    cell.state = CellState::kSolid;
+    cell.map.reset();
+    cell.volume = cell.boxVolume();
+  }
+}
+
+// The common case: the cell's own direction still holds the cut.
+bool fastCut(Cell& cell, const CutContext& ctx) {
+  ThreeMap& map = *cell.map;
+  const Direction d = map.direction();
+  const GridBox sub = fastRegion(cell, ctx.cache.touched(), d.axis);
+  SampleGrid g = SampleGrid::decode(map, sub);
+  g.applyCut(d.axis, ctx.cache);
+  if (!g.changed()) return true;
+  const int u = map.uAxis(), v = map.vAxis();
+  for (int cv = sub.lo[v]; cv <= sub.hi[v]; ++cv)
+    for (int cu = sub.lo[u]; cu <= sub.hi[u]; ++cu)
+      if (!g.columnValid(d, cu, cv)) return false;
+  const double before = regionVolume(map, sub);
+  spliceInto(map, g);
+  setVolume(cell, cell.volume - before + regionVolume(map, sub), ctx);
+  ctx.counters.touched = true;
+  return true;
+}
+
+// Picks, among the valid directions, the one closest to the tool's axis.
+bool validDirection(const GoodBadMap (&maps)[3], const glm::dvec3& t, Direction& out) {
+  bool found = false;
+  for (int a = 0; a < 3; ++a) {
+    if (!maps[a].valid()) continue;
+    if (!found || std::abs(t[a]) > std::abs(t[out.axis])) out = maps[a].validDirection();
+    found = true;
+  }
+  return found;
+}
+
+// An unsplittable (one cube) cell that no direction holds: drop the fewest
+// solid vertices that make one direction hold it. A loss below one grid cube.
+void forceFunctional(SampleGrid& g, const glm::dvec3& t, const CutContext& ctx) {
+  int bestCount = -1;
+  Direction best;
+  for (int index = 0; index < 6; ++index) {
+    const Direction d = directionFromIndex(index);
+    const int a = d.axis, n = g.size(a);
+    int drop = 0;
+    const GridBox& b = g.box();
+    for (int cv = b.lo[axisV(a)]; cv <= b.hi[axisV(a)]; ++cv)
+      for (int cu = b.lo[axisU(a)]; cu <= b.hi[axisU(a)]; ++cu) {
+        std::array<int, 3> p{};
+        p[a] = b.lo[a];
+        p[axisU(a)] = cu;
+        p[axisV(a)] = cv;
+        const std::size_t i0 = g.index(p);
+        bool gap = false;
+        for (int k = 0; k < n; ++k) {
+          const std::size_t i = i0 + (d.sign > 0 ? k : n - 1 - k) * g.stride(a);
+          if (!g.solidAt(i))
+            gap = true;
+          else if (gap)
+            ++drop;
+        }
+      }
+    const bool closer = std::abs(t[a]) > std::abs(t[best.axis]);
+    if (bestCount < 0 || drop < bestCount || (drop == bestCount && closer)) {
+      bestCount = drop;
+      best = d;
+    }
+  }
+  const int a = best.axis, n = g.size(a);
+  const GridBox& b = g.box();
+  for (int cv = b.lo[axisV(a)]; cv <= b.hi[axisV(a)]; ++cv)
+    for (int cu = b.lo[axisU(a)]; cu <= b.hi[axisU(a)]; ++cu) {
+      std::array<int, 3> p{};
+      p[a] = b.lo[a];
+      p[axisU(a)] = cu;
+      p[axisV(a)] = cv;
+      const std::size_t i0 = g.index(p);
+      bool gap = false;
+      for (int k = 0; k < n; ++k) {
+        const std::size_t i = i0 + (best.sign > 0 ? k : n - 1 - k) * g.stride(a);
+        if (!g.solidAt(i))
+          gap = true;
+        else if (gap)
+          g.state(i) &= static_cast<std::uint8_t>(~SampleGrid::kSolid);
+      }
+    }
+  ctx.counters.forcedCells += 1;
+  ctx.counters.forcedVertices += bestCount;
+}
+
+std::vector<SplitCandidate> splitCandidates(const SampleGrid& g, const GoodBadMap (&maps)[3],
+                                            int oldAxis, const GridBox& box) {
+  std::vector<SplitCandidate> out;
+  for (const GoodBadMap& m : maps) isolationSplits(m, oldAxis, box, out);
+  for (const GoodBadMap& m : maps) directSplits(g, m, box, out);
+  auto key = [](const SplitCandidate& c) {
+    return std::tuple(c.axis, c.lo, c.hi, int(c.type), c.complete, c.sole);
+  };
+  std::sort(out.begin(), out.end(), [&](auto& x, auto& y) { return key(x) < key(y); });
+  out.erase(std::unique(out.begin(), out.end(), [&](auto& x, auto& y) { return key(x) == key(y); }),
+            out.end());
+  if (out.empty()) {
+    // Nothing the thesis's rules can offer (sub-grid features): halve the
+    // longest side so the recursion still ends.
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (box.cubes(a) > box.cubes(axis)) axis = a;
+    if (box.cubes(axis) >= 2)
+      out.push_back({axis, box.lo[axis] + 1, box.hi[axis] - 1, SplitType::kFallback, false, false});
+  }
+  return out;
+}
+
+void split(Cell& cell, const SplitCandidate& c, int plane, const CutContext& ctx) {
+  for (int side = 0; side < 2; ++side) {
+    auto child = std::make_unique<Cell>();
+    child->box = cell.box;
+    (side == 0 ? child->box.hi : child->box.lo)[c.axis] = plane;
+    child->id = mixHash(cell.id, side + 1);
+    child->state = CellState::kPartial;
+    child->map = std::make_unique<ThreeMap>(cell.map->restrictedTo(child->box));
+    child->volume = child->map->volume();
+    normalize(*child);
+    cell.child[side] = std::move(child);
+  }
+  // Trapezoid sums are additive, so this moves only rounding noise.
+  ctx.counters.removed += cell.volume - (cell.child[0]->volume + cell.child[1]->volume);
+  cell.volume = 0.0;  // inner nodes hold no volume of their own
+  cell.splitAxis = c.axis;
+  cell.splitAt = plane;
+  cell.map.reset();
+  cell.state = CellState::kInner;
+  ctx.counters.splits[static_cast<int>(c.type)] += 1;
+}
+
+void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
+  const Direction old = cell.map->direction();
+  SampleGrid g = SampleGrid::decode(*cell.map, cell.box);
+  g.applyCut(old.axis, ctx.cache);
+  if (fresh) ctx.counters.overhangEvents += 1;
+  ctx.counters.touched = true;
+  markUnresolved(g, old);
+  const GoodBadMap maps[3] = {buildGoodBadMap(g, 0), buildGoodBadMap(g, 1), buildGoodBadMap(g, 2)};
+  Direction d;
+  if (validDirection(maps, ctx.toolDirection, d)) {
+    *cell.map = encodeMap(g, d, ctx.threeWay);
+    setVolume(cell, cell.map->volume(), ctx);
+    ctx.counters.resamples += 1;
+    return;
+  }
+  const auto candidates = splitCandidates(g, maps, old.axis, cell.box);
+  if (candidates.empty()) {
+    forceFunctional(g, ctx.toolDirection, ctx);
+    const GoodBadMap forced[3] = {buildGoodBadMap(g, 0), buildGoodBadMap(g, 1),
+                                  buildGoodBadMap(g, 2)};
+    if (!validDirection(forced, ctx.toolDirection, d))
+      throw std::logic_error("mdh: forcing a one-cube cell functional failed");
+    *cell.map = encodeMap(g, d, ctx.threeWay);
+    setVolume(cell, cell.map->volume(), ctx);
+    return;
+  }
+  SelectionContext sel{cell.box, ctx.toolDirection, ctx.toolRadius,
+                       mixHash(mixHash(ctx.seed, cell.id), ctx.step)};
+  const SplitCandidate& c = candidates[chooseSplit(candidates, ctx.rules, sel)];
+  split(cell, c, planeFor(c, cell.box), ctx);
+}
+
+void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
+  if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.cache.touched()).empty()) return;
+  if (cell.state == CellState::kSolid) {
+    // Probe first: most solid cells under the tool's box lose nothing.
+    const Direction d = guessDirection(ctx.toolDirection);
+    SampleGrid probe = SampleGrid::solid(fastRegion(cell, ctx.cache.touched(), d.axis));
+    probe.applyCut(d.axis, ctx.cache);
+    if (!probe.changed()) return;
+    cell.map = std::make_unique<ThreeMap>(cell.box, d, ctx.threeWay);
+    cell.state = CellState::kPartial;
+  }
+  if (!fastCut(cell, ctx)) slowCut(cell, ctx, fresh);
+  if (cell.state == CellState::kInner) {
+    for (auto& child : cell.child) {
+      cutLeaf(*child, ctx, false);
+    }
+    return;
+  }
+  normalize(cell);
+}
+
+}  // namespace
+
+void cutCell(Cell& cell, const CutContext& ctx) {
+  if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.cache.touched()).empty()) return;
+  if (cell.state == CellState::kInner) {
+    for (auto& child : cell.child) cutCell(*child, ctx);
+    return;
+  }
+  cutLeaf(cell, ctx, true);
+#ifndef NDEBUG
+  checkCell(cell);
+#endif
+}
+
+namespace {
+
+[[noreturn]] void fail(const Cell& cell, const std::string& what) {
+  const GridBox& b = cell.box;
+  throw std::logic_error("mdh invariant: cell [" + std::to_string(b.lo[0]) + "," +
+                         std::to_string(b.lo[1]) + "," + std::to_string(b.lo[2]) + "]-[" +
+                         std::to_string(b.hi[0]) + "," + std::to_string(b.hi[1]) + "," +
+                         std::to_string(b.hi[2]) + "]: " + what);
+}
+
+void checkMap(const Cell& cell) {
+  const ThreeMap& m = *cell.map;
+  if (!(m.box() == cell.box)) fail(cell, "heightmap box differs from the cell box");
+  const int a = m.axis(), lo = cell.box.lo[a], hi = cell.box.hi[a];
+  for (int iv = 0; iv < m.columnsV(); ++iv)
+    for (int iu = 0; iu < m.columnsU(); ++iu) {
+      const double h = m.height(iu, iv);
+      const bool empty = m.direction().sign > 0 ? h == -kInf : h == kInf;
+      if (!empty && !(h >= lo && h <= hi)) fail(cell, "parent height outside the cell");
+    }
+  if (std::abs(m.volume() - cell.volume) > 1e-6 * (1.0 + cell.boxVolume()))
+    fail(cell, "cached volume differs from the heightmap's");
+  if (!m.threeWay()) return;
+  for (int family = 0; family < 2; ++family)
+    for (int r = 0; r < m.rowCount(family); ++r) {
+      std::size_t expected = 0;
+      const auto& row = m.row(family, r);
+      for (int e = 0; e < m.edgesInRow(family); ++e) {
+        int first = 0, count = 0;
+        m.straddle(m.rowHeight(family, r, e), m.rowHeight(family, r, e + 1), first, count);
+        const int base = cell.box.lo[family == 0 ? m.uAxis() : m.vAxis()] + e;
+        for (int i = 0; i < count; ++i) {
+          if (expected + i >= row.size()) fail(cell, "embedded row too short");
+          const double x = row[expected + i];
+          if (!(x >= base && x <= base + 1)) fail(cell, "embedded height off its edge");
+        }
+        expected += count;
+      }
+      if (expected != row.size()) fail(cell, "embedded row has extra entries");
+    }
+}
+
+}  // namespace
+
+void checkCell(const Cell& cell) {
+  switch (cell.state) {
+    case CellState::kEmpty:
+    case CellState::kSolid:
+      if (cell.map) fail(cell, "solid/empty cell holds a grid");
+      return;
+    case CellState::kPartial:
+      if (!cell.map) fail(cell, "partial cell without a heightmap");
+      checkMap(cell);
+      return;
+    case CellState::kInner: {
+      if (cell.map) fail(cell, "inner node holds a grid");
+      const int a = cell.splitAxis;
+      if (a < 0 || a > 2 || cell.splitAt <= cell.box.lo[a] || cell.splitAt >= cell.box.hi[a])
+        fail(cell, "split plane not strictly inside");
+      for (int side = 0; side < 2; ++side) {
+        if (!cell.child[side]) fail(cell, "missing child");
+        GridBox expect = cell.box;
+        (side == 0 ? expect.hi : expect.lo)[a] = cell.splitAt;
+        if (!(cell.child[side]->box == expect)) fail(cell, "child box does not tile the parent");
+        checkCell(*cell.child[side]);
+      }
+      return;
+    }
+  }
+}
+
+}  // namespace mdhd::mdh

@@ -1,0 +1,36 @@
+#pragma once
+// CutCell (thesis figure 3.1): subtract one step's tool from a subtree. A leaf
+// whose heightmap still holds the result is updated in place, touching only
+// the columns and rows the tool reaches; otherwise the cell is unpacked,
+// its three good-bad maps decide whether a new direction holds it (resampled
+// in place), and if none does it is split by the chosen split plane and both
+// children are cut again.
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sim/mdh/cell.h"
+#include "sim/mdh/cut_counters.h"
+#include "sim/mdh/interval_cache.h"
+#include "sim/mdh/split_rules.h"
+
+namespace mdhd::mdh {
+
+struct CutContext {
+  const IntervalCache& cache;
+  const std::vector<Rule>& rules;
+  bool threeWay = true;
+  glm::dvec3 toolDirection{0.0, 0.0, 1.0};
+  double toolRadius = 0.0;  // grid units
+  std::uint64_t seed = 1;
+  std::uint64_t step = 0;
+  CutCounters& counters;
+};
+
+void cutCell(Cell& cell, const CutContext& ctx);
+
+// Throws std::logic_error naming the first broken invariant of the subtree.
+void checkCell(const Cell& cell);
+
+}  // namespace mdhd::mdh

@@ -1,0 +1,30 @@
+#pragma once
+// What one cut did, counted per brick so parallel work merges in a fixed order.
+#include <array>
+#include <cstdint>
+
+#include "sim/mdh/split_candidate.h"
+
+namespace mdhd::mdh {
+
+struct CutCounters {
+  std::array<std::int64_t, kSplitTypes> splits{};  // by SplitType
+  std::int64_t overhangEvents = 0;                 // a cell became non-functional for its direction
+  std::int64_t resamples = 0;                      // ... and took a new direction without splitting
+  std::int64_t forcedCells = 0;  // unsplittable cells made functional by dropping vertices
+  std::int64_t forcedVertices = 0;
+  double removed = 0.0;  // grid units^3
+  bool touched = false;
+
+  void add(const CutCounters& o) {
+    for (int i = 0; i < kSplitTypes; ++i) splits[i] += o.splits[i];
+    overhangEvents += o.overhangEvents;
+    resamples += o.resamples;
+    forcedCells += o.forcedCells;
+    forcedVertices += o.forcedVertices;
+    removed += o.removed;
+    touched |= o.touched;
+  }
+};
+
+}  // namespace mdhd::mdh

@@ -1,0 +1,65 @@
+#include "sim/mdh/line_segments.h"
+
+#include <cmath>
+
+namespace mdhd::mdh {
+
+void subtractOpen(std::span<const Span> segments, std::span<const Span> tool,
+                  std::vector<Span>& out) {
+  out.clear();
+  std::size_t t0 = 0;
+  for (const Span& s : segments) {
+    double lo = s.lo;
+    bool alive = true;
+    while (t0 < tool.size() && tool[t0].hi <= s.lo) ++t0;
+    for (std::size_t t = t0; t < tool.size(); ++t) {
+      if (tool[t].lo >= s.hi) break;
+      if (tool[t].hi <= lo) continue;
+      if (tool[t].lo >= lo) out.push_back({lo, tool[t].lo});
+      lo = tool[t].hi;
+      if (lo > s.hi) {
+        alive = false;
+        break;
+      }
+    }
+    if (alive) out.push_back({lo, s.hi});
+  }
+}
+
+void segmentsFromSamples(int first, std::span<const std::uint8_t> solid,
+                         std::span<const double> crossing, std::vector<Span>& out) {
+  out.clear();
+  const int n = static_cast<int>(solid.size());
+  int i = 0;
+  while (i < n) {
+    if (!solid[i]) {
+      ++i;
+      continue;
+    }
+    int j = i;
+    while (j + 1 < n && solid[j + 1]) ++j;
+    // A missing crossing (never expected) falls back to the edge midpoint.
+    double lo = first + i;
+    if (i > 0) lo = std::isnan(crossing[i - 1]) ? first + i - 0.5 : crossing[i - 1];
+    double hi = first + j;
+    if (j < n - 1) hi = std::isnan(crossing[j]) ? first + j + 0.5 : crossing[j];
+    out.push_back({lo, hi});
+    i = j + 1;
+  }
+}
+
+void samplesFromSegments(std::span<const Span> segments, int first, int n,
+                         std::vector<std::uint8_t>& solid, std::vector<double>& crossing) {
+  solid.assign(n, 0);
+  crossing.assign(n > 0 ? n - 1 : 0, std::nan(""));
+  for (const Span& s : segments) {
+    const int a = std::max(0, static_cast<int>(std::ceil(s.lo)) - first);
+    const int b = std::min(n - 1, static_cast<int>(std::floor(s.hi)) - first);
+    if (a > b) continue;  // a sliver between two vertices: below the grid's resolution
+    for (int k = a; k <= b; ++k) solid[k] = 1;
+    if (a > 0) crossing[a - 1] = s.lo;
+    if (b < n - 1) crossing[b] = s.hi;
+  }
+}
+
+}  // namespace mdhd::mdh

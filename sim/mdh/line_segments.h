@@ -1,0 +1,31 @@
+#pragma once
+// Interval arithmetic along one grid line, in grid units. Stock segments are
+// closed; tool intervals are open, so a vertex exactly on the tool's surface
+// stays solid (a flat end mill whose face sits on a grid level leaves that
+// level's vertices in place).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mdhd::mdh {
+
+struct Span {
+  double lo = 0.0;
+  double hi = 0.0;
+};
+
+// out = segments minus the open tool intervals (both sorted, disjoint).
+void subtractOpen(std::span<const Span> segments, std::span<const Span> tool,
+                  std::vector<Span>& out);
+
+// Decodes the solid segments of a line from vertex states and edge crossings.
+// `solid[i]` is vertex first+i; `crossing[i]` the surface point on edge
+// (first+i, first+i+1) where the two states differ.
+void segmentsFromSamples(int first, std::span<const std::uint8_t> solid,
+                         std::span<const double> crossing, std::vector<Span>& out);
+
+// Encodes segments into vertex states and crossings for vertices first..first+n-1.
+void samplesFromSegments(std::span<const Span> segments, int first, int n,
+                         std::vector<std::uint8_t>& solid, std::vector<double>& crossing);
+
+}  // namespace mdhd::mdh

@@ -1,0 +1,315 @@
+#include "sim/mdh/sample_grid.h"
+
+#include <cmath>
+
+#include "sim/mdh/line_segments.h"
+
+namespace mdhd::mdh {
+
+namespace {
+
+const double kNaN = std::nan("");
+
+// Vertex with coordinate `level` on axis a, `cu` on axisU(a), `cv` on axisV(a).
+std::array<int, 3> vertex(int a, int level, int cu, int cv) {
+  std::array<int, 3> p{};
+  p[a] = level;
+  p[axisU(a)] = cu;
+  p[axisV(a)] = cv;
+  return p;
+}
+
+// Where the surface crosses edge [k, k+1] of a secondary line after the cut,
+// given the states before (o0, o1) and after (n0, n1) and the old crossing.
+double edgeCrossing(bool o0, bool o1, double oc, bool n0, bool n1, int k,
+                    std::span<const Span> tool, std::vector<Span>& pieces) {
+  Span before{};
+  bool any = true;
+  if (std::isnan(oc)) oc = k + 0.5;
+  if (o0 && o1)
+    before = {double(k), double(k + 1)};
+  else if (o0)
+    before = {double(k), oc};
+  else if (o1)
+    before = {oc, double(k + 1)};
+  else
+    any = false;
+  if (any)
+    subtractOpen(std::span<const Span>(&before, 1), tool, pieces);
+  else
+    pieces.clear();
+  for (const Span& s : pieces) {
+    if (n0 && !n1 && s.lo <= k) return std::clamp(s.hi, double(k), double(k + 1));
+    if (!n0 && n1 && s.hi >= k + 1) return std::clamp(s.lo, double(k), double(k + 1));
+  }
+  // The primary axis removed a vertex this line's intervals did not (a
+  // tangency within rounding): keep the old crossing or take the midpoint.
+  if (o0 != o1) return std::clamp(oc, double(k), double(k + 1));
+  return k + 0.5;
+}
+
+}  // namespace
+
+SampleGrid::SampleGrid(const GridBox& box) : box_(box) {
+  for (int a = 0; a < 3; ++a) n_[a] = box.points(a);
+  const std::size_t count = static_cast<std::size_t>(box.pointCount());
+  state_.assign(count, 0);
+  for (auto& c : cross_) c.assign(count, kNaN);
+}
+
+SampleGrid SampleGrid::solid(const GridBox& box) {
+  SampleGrid g(box);
+  std::fill(g.state_.begin(), g.state_.end(), kSolid);
+  return g;
+}
+
+SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
+  SampleGrid g(sub);
+  const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
+  const GridBox& box = map.box();
+  for (int cv = sub.lo[v]; cv <= sub.hi[v]; ++cv) {
+    for (int cu = sub.lo[u]; cu <= sub.hi[u]; ++cu) {
+      const double h = map.height(cu - box.lo[u], cv - box.lo[v]);
+      for (int k = sub.lo[a]; k <= sub.hi[a]; ++k) {
+        const std::size_t i = g.index(vertex(a, k, cu, cv));
+        g.state_[i] = map.solidAt(h, k) ? kSolid : 0;
+        if (k < sub.hi[a] && map.solidAt(h, k) != map.solidAt(h, k + 1)) g.cross_[a][i] = h;
+      }
+    }
+  }
+  for (int family = 0; family < 2; ++family) {
+    const int x = family == 0 ? u : v;  // the edges' axis
+    const int y = family == 0 ? v : u;  // the rows' axis
+    for (int r = sub.lo[y]; r <= sub.hi[y]; ++r) {
+      const int ri = r - box.lo[y];
+      const std::vector<double>* row = map.threeWay() ? &map.row(family, ri) : nullptr;
+      std::size_t pos = 0;
+      for (int e = 0; e < map.edgesInRow(family); ++e) {
+        const double h0 = map.rowHeight(family, ri, e), h1 = map.rowHeight(family, ri, e + 1);
+        int first = 0, count = 0;
+        map.straddle(h0, h1, first, count);
+        const int c = box.lo[x] + e;
+        if (c >= sub.lo[x] && c + 1 <= sub.hi[x]) {
+          for (int i = 0; i < count; ++i) {
+            const int k = first + i;
+            if (k < sub.lo[a] || k > sub.hi[a]) continue;
+            const double value = row ? (*row)[pos + i] : map.interpolatedCrossing(h0, h1, c, k);
+            std::array<int, 3> p{};
+            p[a] = k;
+            p[x] = c;
+            p[y] = r;
+            g.cross_[x][g.index(p)] = value;
+          }
+        }
+        pos += count;
+      }
+    }
+  }
+  return g;
+}
+
+void SampleGrid::applyCut(int primary, const IntervalCache& cache) {
+  for (auto& s : state_) s = static_cast<std::uint8_t>((s & kSolid) ? (kSolid | kWasSolid) : 0);
+  const int pu = axisU(primary), pv = axisV(primary);
+  const int n = n_[primary];
+  const std::size_t st = stride(primary);
+  std::vector<std::uint8_t> solid(n);
+  std::vector<double> cross(n > 0 ? n - 1 : 0);
+  std::vector<Span> before, after;
+  for (int cv = box_.lo[pv]; cv <= box_.hi[pv]; ++cv) {
+    for (int cu = box_.lo[pu]; cu <= box_.hi[pu]; ++cu) {
+      const auto tool = cache.line(primary, cu, cv);
+      if (tool.empty()) continue;
+      const std::size_t i0 = index(vertex(primary, box_.lo[primary], cu, cv));
+      for (int k = 0; k < n; ++k) {
+        solid[k] = state_[i0 + k * st] & kSolid;
+        if (k + 1 < n) cross[k] = cross_[primary][i0 + k * st];
+      }
+      segmentsFromSamples(box_.lo[primary], solid, cross, before);
+      subtractOpen(before, tool, after);
+      samplesFromSegments(after, box_.lo[primary], n, solid, cross);
+      for (int k = 0; k < n; ++k) {
+        std::uint8_t& s = state_[i0 + k * st];
+        if ((s & kSolid) != solid[k]) changed_ = true;
+        s = static_cast<std::uint8_t>((s & ~kSolid) | solid[k]);
+      }
+      for (int k = 0; k + 1 < n; ++k) {
+        const bool differ = solid[k] != solid[k + 1];
+        double& c = cross_[primary][i0 + k * st];
+        if (differ && c != cross[k]) changed_ = true;
+        c = differ ? cross[k] : kNaN;
+      }
+    }
+  }
+  std::vector<Span> pieces;
+  for (int x : {pu, pv}) {
+    const int xu = axisU(x), xv = axisV(x);
+    const std::size_t sx = stride(x);
+    for (int cv = box_.lo[xv]; cv <= box_.hi[xv]; ++cv) {
+      for (int cu = box_.lo[xu]; cu <= box_.hi[xu]; ++cu) {
+        const auto tool = cache.line(x, cu, cv);
+        const std::size_t i0 = index(vertex(x, box_.lo[x], cu, cv));
+        for (int k = 0; k + 1 < n_[x]; ++k) {
+          const std::size_t i = i0 + k * sx;
+          const std::uint8_t s0 = state_[i], s1 = state_[i + sx];
+          const bool n0 = s0 & kSolid, n1 = s1 & kSolid;
+          const bool o0 = s0 & kWasSolid, o1 = s1 & kWasSolid;
+          double& c = cross_[x][i];
+          if (n0 == n1) {
+            c = kNaN;
+            continue;
+          }
+          if (tool.empty() && o0 == n0 && o1 == n1) continue;
+          const double nc = edgeCrossing(o0, o1, c, n0, n1, box_.lo[x] + k, tool, pieces);
+          if (!(nc == c)) changed_ = true;
+          c = nc;
+        }
+      }
+    }
+  }
+}
+
+bool SampleGrid::columnValid(Direction d, int cu, int cv) const {
+  const int a = d.axis, n = n_[a];
+  const std::size_t st = stride(a);
+  const std::size_t i0 = index(vertex(a, box_.lo[a], cu, cv));
+  bool seenEmpty = false, seenSolid = false;
+  for (int k = 0; k < n; ++k) {
+    const int kk = d.sign > 0 ? k : n - 1 - k;
+    const bool s = state_[i0 + kk * st] & kSolid;
+    if (s && seenEmpty) return false;
+    seenEmpty |= !s;
+    seenSolid |= s;
+  }
+  return true;
+}
+
+double SampleGrid::columnHeight(Direction d, int cu, int cv) const {
+  const int a = d.axis, n = n_[a], lo = box_.lo[a], hi = box_.hi[a];
+  const std::size_t st = stride(a);
+  const std::size_t i0 = index(vertex(a, lo, cu, cv));
+  int m = 0;  // solid vertices counted from the heightmap's base face
+  while (m < n && (state_[i0 + (d.sign > 0 ? m : n - 1 - m) * st] & kSolid)) ++m;
+  if (m == 0) return d.sign > 0 ? -kInf : kInf;
+  if (m == n) return d.sign > 0 ? hi : lo;
+  if (d.sign > 0) {
+    const int k = lo + m - 1;  // last solid vertex; the crossing lies in [k, k+1)
+    double c = cross_[a][i0 + (m - 1) * st];
+    if (std::isnan(c)) c = k + 0.5;
+    return std::clamp(c, double(k), std::nextafter(double(k + 1), -kInf));
+  }
+  const int k = hi - m + 1;  // lowest solid vertex; the crossing lies in (k-1, k]
+  double c = cross_[a][i0 + (n - m - 1) * st];
+  if (std::isnan(c)) c = k - 0.5;
+  return std::clamp(c, std::nextafter(double(k - 1), kInf), double(k));
+}
+
+namespace {
+
+// One row of embedded heights rebuilt: edges whose two columns lie in g take
+// their crossings from g, the others keep theirs.
+void rebuildRow(ThreeMap& map, int family, int r, const std::vector<double>& newHeights,
+                const GridBox& gbox, const SampleGrid& g) {
+  const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
+  const int x = family == 0 ? u : v, y = family == 0 ? v : u;
+  const GridBox& box = map.box();
+  const int absR = box.lo[y] + r;
+  const bool rowInG = absR >= gbox.lo[y] && absR <= gbox.hi[y];
+  const int gnu = gbox.points(u);
+  auto newHeight = [&](int e) {  // e: column index along x within the row
+    const int absE = box.lo[x] + e;
+    const int cu = family == 0 ? absE : absR, cv = family == 0 ? absR : absE;
+    if (rowInG && absE >= gbox.lo[x] && absE <= gbox.hi[x])
+      return newHeights[(cv - gbox.lo[v]) * gnu + (cu - gbox.lo[u])];
+    return map.rowHeight(family, r, e);
+  };
+  const std::vector<double>& src = map.row(family, r);
+  std::vector<double> dst;
+  dst.reserve(src.size() + 8);
+  std::size_t pos = 0;
+  for (int e = 0; e < map.edgesInRow(family); ++e) {
+    const double oh0 = map.rowHeight(family, r, e), oh1 = map.rowHeight(family, r, e + 1);
+    const double nh0 = newHeight(e), nh1 = newHeight(e + 1);
+    int ofirst = 0, ocount = 0, nfirst = 0, ncount = 0;
+    map.straddle(oh0, oh1, ofirst, ocount);
+    map.straddle(nh0, nh1, nfirst, ncount);
+    const int c = box.lo[x] + e;
+    const bool inG = rowInG && c >= gbox.lo[x] && c + 1 <= gbox.hi[x];
+    for (int i = 0; i < ncount; ++i) {
+      const int k = nfirst + i;
+      double value = std::nan("");
+      if (inG) {
+        std::array<int, 3> p{};
+        p[a] = k;
+        p[x] = c;
+        p[y] = absR;
+        value = g.crossing(x, g.index(p));
+      }
+      if (std::isnan(value)) {
+        value = (k >= ofirst && k < ofirst + ocount) ? src[pos + (k - ofirst)]
+                                                     : map.interpolatedCrossing(nh0, nh1, c, k);
+      }
+      dst.push_back(value);
+    }
+    pos += ocount;
+  }
+  dst.shrink_to_fit();
+  map.row(family, r) = std::move(dst);
+}
+
+}  // namespace
+
+ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay) {
+  ThreeMap map(g.box(), d, threeWay);
+  const int a = d.axis, u = map.uAxis(), v = map.vAxis();
+  const GridBox& box = g.box();
+  for (int cv = box.lo[v]; cv <= box.hi[v]; ++cv)
+    for (int cu = box.lo[u]; cu <= box.hi[u]; ++cu)
+      map.setHeight(cu - box.lo[u], cv - box.lo[v], g.columnHeight(d, cu, cv));
+  if (!threeWay) return map;
+  for (int family = 0; family < 2; ++family) {
+    const int x = family == 0 ? u : v, y = family == 0 ? v : u;
+    for (int r = 0; r < map.rowCount(family); ++r) {
+      std::vector<double>& dst = map.row(family, r);
+      for (int e = 0; e < map.edgesInRow(family); ++e) {
+        const double h0 = map.rowHeight(family, r, e), h1 = map.rowHeight(family, r, e + 1);
+        int first = 0, count = 0;
+        map.straddle(h0, h1, first, count);
+        for (int i = 0; i < count; ++i) {
+          std::array<int, 3> p{};
+          p[a] = first + i;
+          p[x] = box.lo[x] + e;
+          p[y] = box.lo[y] + r;
+          double value = g.crossing(x, g.index(p));
+          if (std::isnan(value)) value = map.interpolatedCrossing(h0, h1, p[x], p[a]);
+          dst.push_back(value);
+        }
+      }
+      dst.shrink_to_fit();
+    }
+  }
+  return map;
+}
+
+void spliceInto(ThreeMap& map, const SampleGrid& g) {
+  const Direction d = map.direction();
+  const int u = map.uAxis(), v = map.vAxis();
+  const GridBox& gbox = g.box();
+  const GridBox& box = map.box();
+  std::vector<double> heights;
+  heights.reserve(static_cast<std::size_t>(gbox.points(u)) * gbox.points(v));
+  for (int cv = gbox.lo[v]; cv <= gbox.hi[v]; ++cv)
+    for (int cu = gbox.lo[u]; cu <= gbox.hi[u]; ++cu) heights.push_back(g.columnHeight(d, cu, cv));
+  if (map.threeWay()) {
+    for (int cv = gbox.lo[v]; cv <= gbox.hi[v]; ++cv)
+      rebuildRow(map, 0, cv - box.lo[v], heights, gbox, g);
+    for (int cu = gbox.lo[u]; cu <= gbox.hi[u]; ++cu)
+      rebuildRow(map, 1, cu - box.lo[u], heights, gbox, g);
+  }
+  std::size_t i = 0;
+  for (int cv = gbox.lo[v]; cv <= gbox.hi[v]; ++cv)
+    for (int cu = gbox.lo[u]; cu <= gbox.hi[u]; ++cu)
+      map.setHeight(cu - box.lo[u], cv - box.lo[v], heights[i++]);
+}
+
+}  // namespace mdhd::mdh

@@ -1,0 +1,131 @@
+#include "sim/mdh/stock.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "sim/mdh/cut_cell.h"
+#include "sim/mdh/interval_cache.h"
+#include "sim/mdh/rng.h"
+
+namespace mdhd::mdh {
+
+namespace {
+
+constexpr int kMaxCubesPerAxis = 1 << 20;
+constexpr std::int64_t kMaxBricks = std::int64_t{1} << 22;
+constexpr char kAxisNames[] = "xyz";
+
+}  // namespace
+
+Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(options)) {
+  if (!(options_.density > 0.0) || !std::isfinite(options_.density))
+    throw std::invalid_argument("mdh: density must be a positive number of grid points per mm");
+  if (options_.brick < 0) throw std::invalid_argument("mdh: brick size must be >= 0");
+  grid_.origin = box.lo;
+  grid_.h = 1.0 / options_.density;
+  std::int64_t bricks = 1;
+  for (int a = 0; a < 3; ++a) {
+    const double extent = box.hi[a] - box.lo[a];
+    if (!(extent > 0.0) || !std::isfinite(extent))
+      throw std::invalid_argument(std::string("mdh: stock box is empty or invalid along ") +
+                                  kAxisNames[a]);
+    // The max corner snaps to the nearest grid plane.
+    const double cubes = std::max(1.0, std::round(extent / grid_.h));
+    if (cubes > kMaxCubesPerAxis)
+      throw std::invalid_argument(std::string("mdh: grid too fine along ") + kAxisNames[a] + " (" +
+                                  std::to_string(cubes) + " cubes)");
+    grid_.cubes[a] = static_cast<int>(cubes);
+    brickSize_[a] = options_.brick > 0 ? options_.brick : grid_.cubes[a];
+    bricks_[a] = (grid_.cubes[a] + brickSize_[a] - 1) / brickSize_[a];
+    bricks *= bricks_[a];
+  }
+  if (bricks > kMaxBricks)
+    throw std::invalid_argument("mdh: too many bricks (" + std::to_string(bricks) +
+                                "); use a larger brick size");
+  roots_.resize(static_cast<std::size_t>(bricks));
+  for (int z = 0; z < bricks_[2]; ++z)
+    for (int y = 0; y < bricks_[1]; ++y)
+      for (int x = 0; x < bricks_[0]; ++x) {
+        Cell& c = roots_[brickIndex({x, y, z})];
+        const std::array<int, 3> b{x, y, z};
+        for (int a = 0; a < 3; ++a) {
+          c.box.lo[a] = b[a] * brickSize_[a];
+          c.box.hi[a] = std::min(grid_.cubes[a], (b[a] + 1) * brickSize_[a]);
+        }
+        c.id = mixHash(0x6d64686d6170ULL, static_cast<std::uint64_t>(brickIndex(b)));
+        c.state = CellState::kSolid;
+        c.volume = c.boxVolume();
+      }
+  const unsigned hw = std::thread::hardware_concurrency();
+  threads_ = options_.threads > 0 ? options_.threads : static_cast<int>(std::max(1u, hw));
+  toolRadius_ = options_.tool_radius_hint;
+}
+
+Stock::~Stock() = default;
+
+CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& tool_direction) {
+  ++step_;
+  CutResult result;
+  const IntervalCache cache(grid_, solid);
+  const GridBox& t = cache.touched();
+  if (t.empty()) return result;
+  std::vector<int> items;
+  std::array<int, 3> first{}, last{};
+  for (int a = 0; a < 3; ++a) {
+    first[a] = std::max(0, (t.lo[a] - 1) / brickSize_[a]);
+    last[a] = std::min(bricks_[a] - 1, t.hi[a] / brickSize_[a]);
+  }
+  for (int z = first[2]; z <= last[2]; ++z)
+    for (int y = first[1]; y <= last[1]; ++y)
+      for (int x = first[0]; x <= last[0]; ++x) items.push_back(brickIndex({x, y, z}));
+  std::vector<CutCounters> counters(items.size());
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+  auto work = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < items.size();) {
+      if (failed.load()) return;
+      try {
+        const CutContext ctx{cache,
+                             options_.ruleset,
+                             options_.three_way,
+                             tool_direction,
+                             toolRadius_ / grid_.h,
+                             options_.seed,
+                             step_,
+                             counters[i]};
+        cutCell(roots_[items[i]], ctx);
+      } catch (...) {
+        if (!failed.exchange(true)) error = std::current_exception();
+        return;
+      }
+    }
+  };
+  const int helpers = std::min<int>(threads_, static_cast<int>(items.size())) - 1;
+  std::vector<std::thread> pool;
+  for (int i = 0; i < helpers; ++i) pool.emplace_back(work);
+  work();
+  for (auto& th : pool) th.join();
+  if (error) std::rethrow_exception(error);
+  CutCounters step;
+  for (const CutCounters& c : counters) step.add(c);  // fixed order: identical sums
+  totals_.add(step);
+  const double h3 = grid_.h * grid_.h * grid_.h;
+  result.removed_volume = step.removed * h3;
+  result.touched = step.touched;
+  result.overhang_events = step.overhangEvents;
+  result.overhang = step.overhangEvents > 0;
+  for (auto s : step.splits) result.splits += s;
+  return result;
+}
+
+void Stock::checkInvariants() const {
+  for (const Cell& root : roots_) checkCell(root);
+}
+
+}  // namespace mdhd::mdh

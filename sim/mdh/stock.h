@@ -1,0 +1,102 @@
+#pragma once
+// The stock as a multidirectional heightmap (mdh-map): a kD-tree of cells over
+// a uniform sampling grid, every partial cell a (3-way) heightmap in one of
+// the six axis directions. The only way in is a LineSolid per in-between step.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sim/geometry/line_solid.h"
+#include "sim/mdh/cell.h"
+#include "sim/mdh/cut_counters.h"
+#include "sim/mdh/split_rules.h"
+#include "sim/mdh/stats.h"
+
+namespace mdhd::mdh {
+
+struct StockOptions {
+  double density = 10.0;  // grid points per mm
+  bool three_way = true;
+  std::vector<Rule> ruleset{Rule::kFEFS_FFS, Rule::kCTD, Rule::kSPT, Rule::kRS};
+  std::uint64_t seed = 1;
+  int threads = 0;                // 0: hardware concurrency
+  int brick = 32;                 // pre-split into bricks of this many grid cubes; 0: one root cell
+  double tool_radius_hint = 0.0;  // mm, FEFS's threshold until setToolRadius
+};
+
+struct CutResult {
+  double removed_volume = 0.0;  // mm^3, this step
+  bool touched = false;         // any material changed
+  bool overhang = false;        // some cell needed a new direction or a split
+  std::int64_t overhang_events = 0;
+  std::int64_t splits = 0;
+};
+
+struct Overlap {
+  bool touched = false;     // overlaps material along some grid line by more than the tolerance
+  double volume = 0.0;      // mm^3 of stock inside the solid (grid estimate)
+  double max_length = 0.0;  // mm, longest overlap along one grid line
+};
+
+struct SurfaceArea {
+  std::array<double, 6> by_direction{};  // mm^2 by dominant outward normal: +x -x +y -y +z -z
+  double overhang = 0.0;                 // mm^2 with outward normal n.z < -0.01
+  double total = 0.0;
+};
+
+// Read-only view of a leaf for visitors (meshing, debugging).
+struct LeafView {
+  const GridBox& box;
+  CellState state;
+  const ThreeMap* map;  // null unless partial
+};
+
+class Stock {
+ public:
+  // Throws std::invalid_argument for an empty box, a non-positive density or a grid too large.
+  Stock(const geom::Aabb& box, StockOptions options);
+  ~Stock();
+  Stock(const Stock&) = delete;
+  Stock& operator=(const Stock&) = delete;
+
+  // Removes the solid; tool_direction points from the tool tip to the spindle.
+  CutResult cut(const geom::LineSolid& solid, const glm::dvec3& tool_direction);
+  void setToolRadius(double mm) { toolRadius_ = mm; }
+
+  Overlap probe(const geom::LineSolid& solid, double tolerance = 0.0) const;
+  bool isSolid(const glm::dvec3& p) const;
+  // Solid intervals (mm) along the grid line of `axis` through vertex indices
+  // iu on axis (axis+1)%3 and iv on (axis+2)%3.
+  void solidIntervals(int axis, int iu, int iv, std::vector<geom::Interval>& out) const;
+  double volume() const;  // mm^3
+  SurfaceArea area() const;
+  Stats stats() const;
+  void checkInvariants() const;
+  void forEachLeaf(const std::function<void(const LeafView&)>& visit) const;
+
+  const GridSpec& grid() const { return grid_; }
+  const StockOptions& options() const { return options_; }
+  std::uint64_t steps() const { return step_; }
+
+ private:
+  int brickIndex(const std::array<int, 3>& b) const {
+    return b[0] + bricks_[0] * (b[1] + bricks_[1] * b[2]);
+  }
+  const Cell* leafAt(const glm::dvec3& g) const;
+
+  StockOptions options_;
+  GridSpec grid_;
+  std::array<int, 3> bricks_{1, 1, 1};
+  int brickSize_[3]{};
+  std::vector<Cell> roots_;
+  CutCounters totals_;
+  std::uint64_t step_ = 0;
+  double toolRadius_ = 0.0;
+  int threads_ = 1;
+};
+
+}  // namespace mdhd::mdh

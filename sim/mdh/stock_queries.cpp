@@ -1,0 +1,241 @@
+// Read-only questions to the stock: membership, intervals, volume, area, probes.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "sim/mdh/interval_cache.h"
+#include "sim/mdh/stock.h"
+
+namespace mdhd::mdh {
+
+namespace {
+
+// Solid segments (grid units) of a partial cell along the grid line of `axis`
+// through the vertex whose other two coordinates are given in `at`.
+void partialSegments(const ThreeMap& m, int axis, const std::array<int, 3>& at,
+                     std::vector<Span>& out) {
+  const GridBox& box = m.box();
+  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+  if (axis == a) {
+    const double h = m.height(at[u] - box.lo[u], at[v] - box.lo[v]);
+    const double len = m.columnLength(h);
+    if (m.solidCount(h) == 0) return;
+    if (m.direction().sign > 0)
+      out.push_back({double(box.lo[a]), box.lo[a] + len});
+    else
+      out.push_back({box.hi[a] - len, double(box.hi[a])});
+    return;
+  }
+  const int family = axis == u ? 0 : 1;
+  const int other = family == 0 ? v : u;
+  const int r = at[other] - box.lo[other];
+  const int k = at[a];
+  const int n = box.points(axis);
+  std::vector<std::uint8_t> solid(n);
+  std::vector<double> cross(n - 1, std::nan(""));
+  for (int e = 0; e < n; ++e) solid[e] = m.solidAt(m.rowHeight(family, r, e), k);
+  std::size_t pos = 0;
+  for (int e = 0; e + 1 < n; ++e) {
+    const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
+    int first = 0, count = 0;
+    m.straddle(h0, h1, first, count);
+    if (k >= first && k < first + count) {
+      cross[e] = m.threeWay() ? m.row(family, r)[pos + (k - first)]
+                              : m.interpolatedCrossing(h0, h1, box.lo[axis] + e, k);
+    }
+    pos += count;
+  }
+  std::vector<Span> segs;
+  segmentsFromSamples(box.lo[axis], solid, cross, segs);
+  out.insert(out.end(), segs.begin(), segs.end());
+}
+
+void leafSegments(const Cell& c, int axis, const std::array<int, 3>& at, std::vector<Span>& out) {
+  if (c.state == CellState::kSolid)
+    out.push_back({double(c.box.lo[axis]), double(c.box.hi[axis])});
+  else if (c.state == CellState::kPartial)
+    partialSegments(*c.map, axis, at, out);
+}
+
+void lineSegments(const Cell& c, int axis, const std::array<int, 3>& at, std::vector<Span>& out) {
+  if (c.state != CellState::kInner) {
+    leafSegments(c, axis, at, out);
+    return;
+  }
+  if (c.splitAxis == axis) {
+    lineSegments(*c.child[0], axis, at, out);
+    lineSegments(*c.child[1], axis, at, out);
+    return;
+  }
+  lineSegments(*c.child[at[c.splitAxis] < c.splitAt ? 0 : 1], axis, at, out);
+}
+
+void visit(const Cell& c, const std::function<void(const LeafView&)>& f) {
+  if (c.state == CellState::kInner) {
+    visit(*c.child[0], f);
+    visit(*c.child[1], f);
+    return;
+  }
+  f(LeafView{c.box, c.state, c.map.get()});
+}
+
+}  // namespace
+
+const Cell* Stock::leafAt(const glm::dvec3& g) const {
+  std::array<int, 3> b{};
+  for (int a = 0; a < 3; ++a)
+    b[a] = std::clamp(static_cast<int>(std::floor(g[a] / brickSize_[a])), 0, bricks_[a] - 1);
+  const Cell* c = &roots_[brickIndex(b)];
+  while (c->state == CellState::kInner) c = c->child[g[c->splitAxis] < c->splitAt ? 0 : 1].get();
+  return c;
+}
+
+bool Stock::isSolid(const glm::dvec3& p) const {
+  glm::dvec3 g;
+  for (int a = 0; a < 3; ++a) {
+    g[a] = grid_.toGrid(a, p[a]);
+    if (!(g[a] >= 0.0 && g[a] <= grid_.cubes[a])) return false;
+  }
+  const Cell* c = leafAt(g);
+  if (c->state != CellState::kPartial) return c->state == CellState::kSolid;
+  // Bilinear height between the four columns around the point.
+  const ThreeMap& m = *c->map;
+  const GridBox& box = m.box();
+  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+  const double fu = std::clamp(g[u] - box.lo[u], 0.0, double(box.cubes(u)));
+  const double fv = std::clamp(g[v] - box.lo[v], 0.0, double(box.cubes(v)));
+  const int iu = std::min(static_cast<int>(fu), box.cubes(u) - 1);
+  const int iv = std::min(static_cast<int>(fv), box.cubes(v) - 1);
+  const double tu = fu - iu, tv = fv - iv;
+  const double below = box.lo[a] - 1.0, above = box.hi[a] + 1.0;
+  auto h = [&](int du, int dv) {
+    const double x = m.height(iu + du, iv + dv);
+    return std::clamp(x, below, above);
+  };
+  const double hh = (1 - tu) * (1 - tv) * h(0, 0) + tu * (1 - tv) * h(1, 0) +
+                    (1 - tu) * tv * h(0, 1) + tu * tv * h(1, 1);
+  return m.direction().sign > 0 ? g[a] <= hh : g[a] >= hh;
+}
+
+void Stock::solidIntervals(int axis, int iu, int iv, std::vector<geom::Interval>& out) const {
+  out.clear();
+  const int u = axisU(axis), v = axisV(axis);
+  if (axis < 0 || axis > 2 || iu < 0 || iu > grid_.cubes[u] || iv < 0 || iv > grid_.cubes[v])
+    throw std::out_of_range("mdh: grid line (" + std::to_string(axis) + ", " + std::to_string(iu) +
+                            ", " + std::to_string(iv) + ") is outside the stock");
+  std::array<int, 3> at{};
+  at[u] = iu;
+  at[v] = iv;
+  std::array<int, 3> b{};
+  b[u] = std::min(iu / brickSize_[u], bricks_[u] - 1);
+  b[v] = std::min(iv / brickSize_[v], bricks_[v] - 1);
+  std::vector<Span> segs;
+  for (b[axis] = 0; b[axis] < bricks_[axis]; ++b[axis])
+    lineSegments(roots_[brickIndex(b)], axis, at, segs);
+  for (const Span& s : segs) {
+    const double lo = grid_.toMm(axis, s.lo), hi = grid_.toMm(axis, s.hi);
+    if (!out.empty() && s.lo <= grid_.toGrid(axis, out.back().hi) + 1e-9) {
+      out.back().hi = std::max(out.back().hi, hi);
+    } else {
+      out.push_back({lo, hi});
+    }
+  }
+}
+
+double Stock::volume() const {
+  double v = 0.0;
+  forEachLeaf([&](const LeafView& leaf) {
+    if (leaf.state == CellState::kSolid)
+      v += double(leaf.box.cubes(0)) * leaf.box.cubes(1) * leaf.box.cubes(2);
+    else if (leaf.map)
+      v += leaf.map->volume();
+  });
+  return v * grid_.h * grid_.h * grid_.h;
+}
+
+SurfaceArea Stock::area() const {
+  SurfaceArea out;
+  const double h2 = grid_.h * grid_.h;
+  forEachLeaf([&](const LeafView& leaf) {
+    if (!leaf.map) return;
+    const ThreeMap& m = *leaf.map;
+    const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+    const double lo = leaf.box.lo[a], hi = leaf.box.hi[a];
+    auto corner = [&](int iu, int iv) {
+      glm::dvec3 p;
+      p[a] = std::clamp(m.height(iu, iv), lo, hi);
+      p[u] = iu;
+      p[v] = iv;
+      return p;
+    };
+    auto triangle = [&](glm::dvec3 p0, glm::dvec3 p1, glm::dvec3 p2) {
+      // Triangles lying in the cell's own face are cell boundary, not surface.
+      if ((p0[a] == lo && p1[a] == lo && p2[a] == lo) ||
+          (p0[a] == hi && p1[a] == hi && p2[a] == hi))
+        return;
+      glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
+      if (n[a] * m.direction().sign < 0) n = -n;
+      const double len = std::sqrt(glm::dot(n, n));
+      if (len == 0.0) return;
+      const double area = 0.5 * len * h2;
+      int dom = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::abs(n[k]) > std::abs(n[dom])) dom = k;
+      out.by_direction[dom * 2 + (n[dom] < 0 ? 1 : 0)] += area;
+      if (n[2] / len < -0.01) out.overhang += area;
+      out.total += area;
+    };
+    for (int iv = 0; iv + 1 < m.columnsV(); ++iv)
+      for (int iu = 0; iu + 1 < m.columnsU(); ++iu) {
+        const auto p00 = corner(iu, iv), p10 = corner(iu + 1, iv);
+        const auto p01 = corner(iu, iv + 1), p11 = corner(iu + 1, iv + 1);
+        triangle(p00, p10, p11);
+        triangle(p00, p11, p01);
+      }
+  });
+  return out;
+}
+
+Overlap Stock::probe(const geom::LineSolid& solid, double tolerance) const {
+  Overlap out;
+  const IntervalCache cache(grid_, solid);
+  const GridBox& t = cache.touched();
+  if (t.empty()) return out;
+  const double h = grid_.h;
+  forEachLeaf([&](const LeafView& leaf) {
+    const GridBox region = leaf.box.intersect(t);
+    if (region.empty() || leaf.state == CellState::kEmpty) return;
+    const int a = leaf.map ? leaf.map->axis() : 2, u = axisU(a), v = axisV(a);
+    std::array<int, 3> at{};
+    std::vector<Span> segs;
+    for (at[v] = region.lo[v]; at[v] <= region.hi[v]; ++at[v])
+      for (at[u] = region.lo[u]; at[u] <= region.hi[u]; ++at[u]) {
+        const auto tool = cache.line(a, at[u], at[v]);
+        if (tool.empty()) continue;
+        segs.clear();
+        if (leaf.map)
+          partialSegments(*leaf.map, a, at, segs);
+        else
+          segs.push_back({double(leaf.box.lo[a]), double(leaf.box.hi[a])});
+        double len = 0.0;
+        for (const Span& s : segs)
+          for (const Span& x : tool)
+            len += std::max(0.0, std::min(s.hi, x.hi) - std::max(s.lo, x.lo));
+        const double w = ((at[u] == leaf.box.lo[u] || at[u] == leaf.box.hi[u]) ? 0.5 : 1.0) *
+                         ((at[v] == leaf.box.lo[v] || at[v] == leaf.box.hi[v]) ? 0.5 : 1.0);
+        out.volume += w * len * h * h * h;
+        out.max_length = std::max(out.max_length, len * h);
+      }
+  });
+  out.touched = out.max_length > tolerance;
+  return out;
+}
+
+void Stock::forEachLeaf(const std::function<void(const LeafView&)>& f) const {
+  for (const Cell& root : roots_) visit(root, f);
+}
+
+}  // namespace mdhd::mdh

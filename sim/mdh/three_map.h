@@ -1,0 +1,103 @@
+#pragma once
+// A partial cell's surface: a (3-way) heightmap in one of six directions.
+//
+// Parent heights: one per column (grid line along the direction axis through
+// the cell's cross-section), dense, an absolute grid coordinate along the
+// column. For +a the vertices k <= H are solid; for -a those with k >= H. An
+// empty column stores -inf (+a) or +inf (-a), so the solid vertex count always
+// follows from H alone.
+//
+// Embedded heights (3-maps only): between two neighbouring columns, at every
+// grid level where exactly one of the two is solid, the surface crossing on
+// that grid edge, again as an absolute coordinate along the edge. How many an
+// edge holds follows from its two parent heights, so they are packed per row
+// of edges with no index or pointer per entry.
+#include <cstddef>
+#include <vector>
+
+#include "sim/mdh/direction.h"
+#include "sim/mdh/grid.h"
+
+namespace mdhd::mdh {
+
+class ThreeMap {
+ public:
+  // All columns full.
+  ThreeMap(const GridBox& box, Direction dir, bool threeWay);
+
+  const GridBox& box() const { return box_; }
+  Direction direction() const { return dir_; }
+  bool threeWay() const { return threeWay_; }
+  int axis() const { return dir_.axis; }
+  int uAxis() const { return axisU(dir_.axis); }
+  int vAxis() const { return axisV(dir_.axis); }
+  int columnsU() const { return nu_; }
+  int columnsV() const { return nv_; }
+  int levels() const { return box_.points(dir_.axis); }
+
+  double height(int iu, int iv) const { return heights_[iv * nu_ + iu]; }
+  void setHeight(int iu, int iv, double h) {
+    double& slot = heights_[iv * nu_ + iu];
+    fullColumns_ += (solidCount(h) == levels()) - (solidCount(slot) == levels());
+    emptyColumns_ += (solidCount(h) == 0) - (solidCount(slot) == 0);
+    slot = h;
+  }
+  double emptyHeight() const { return dir_.sign > 0 ? -kInf : kInf; }
+  double fullHeight() const { return dir_.sign > 0 ? box_.hi[dir_.axis] : box_.lo[dir_.axis]; }
+
+  // Number of solid vertices of a column with height h.
+  int solidCount(double h) const;
+  bool solidAt(double h, int level) const { return dir_.sign > 0 ? level <= h : level >= h; }
+  // The grid levels where columns h1 and h2 differ: first, first+1, ... (count).
+  void straddle(double h1, double h2, int& first, int& count) const;
+  // Solid length of a column in grid units.
+  double columnLength(double h) const;
+
+  // Embedded heights. family 0: edges along u, row index = iv; family 1: edges
+  // along v, row index = iu. Entries: edge by edge, levels ascending.
+  const std::vector<double>& row(int family, int index) const { return rows_[family][index]; }
+  std::vector<double>& row(int family, int index) { return rows_[family][index]; }
+  int rowCount(int family) const { return family == 0 ? nv_ : nu_; }
+  int edgesInRow(int family) const { return family == 0 ? nu_ - 1 : nv_ - 1; }
+  // Parent height of the column at position e (0 or 1 side) of edge `edge` in a row.
+  double rowHeight(int family, int index, int edge) const {
+    return family == 0 ? height(edge, index) : height(index, edge);
+  }
+  // The crossing on an edge at `level` when no embedded heights are stored:
+  // linear interpolation between the two parent heights.
+  double interpolatedCrossing(double h0, double h1, int edgeStart, int level) const;
+
+  // Volume in grid units^3: per grid square, the integral of the Coons patch
+  // through its four edge profiles (1/2 the sum of the edge integrals minus
+  // 1/4 the sum of the corner heights). An edge profile runs through the two
+  // parent heights and, in a 3-map, the embedded crossings, so a face lying
+  // on a grid plane is exact whatever the direction; a plain heightmap gets
+  // the bilinear (trapezoid) value.
+  double volume() const { return squaresVolume(0, nu_ - 1, 0, nv_ - 1); }
+  // The same over the squares whose corners lie in columns [iu0, iu1] x [iv0, iv1].
+  double squaresVolume(int iu0, int iu1, int iv0, int iv1) const;
+  double columnWeight(int iu, int iv) const {
+    return ((iu == 0 || iu == nu_ - 1) && nu_ > 1 ? 0.5 : 1.0) *
+           ((iv == 0 || iv == nv_ - 1) && nv_ > 1 ? 0.5 : 1.0);
+  }
+  bool allFull() const { return fullColumns_ == nu_ * nv_; }
+  bool allEmpty() const { return emptyColumns_ == nu_ * nv_; }
+  std::size_t memoryBytes() const;
+  std::size_t embeddedCount() const;
+
+  // The same surface restricted to a sub-box (used when a cell is split).
+  ThreeMap restrictedTo(const GridBox& sub) const;
+
+ private:
+  GridBox box_;
+  Direction dir_;
+  bool threeWay_;
+  int nu_;
+  int nv_;
+  int fullColumns_;
+  int emptyColumns_ = 0;
+  std::vector<double> heights_;
+  std::vector<std::vector<double>> rows_[2];
+};
+
+}  // namespace mdhd::mdh

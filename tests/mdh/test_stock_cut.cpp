@@ -1,0 +1,140 @@
+#include "sim/mdh/stock.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "tests/mdh/analytic_solids.h"
+
+namespace mdhd::mdh {
+namespace {
+
+using testing::BoxSolid;
+using testing::CylinderSolid;
+using testing::SphereSolid;
+
+const geom::Aabb kStock{{0, 0, 0}, {10, 8, 6}};
+
+StockOptions options(int brick = 32, int threads = 1) {
+  StockOptions o;
+  o.density = 10;
+  o.brick = brick;
+  o.threads = threads;
+  return o;
+}
+
+TEST(StockCut, UncutStockIsTheBox) {
+  Stock s(kStock, options());
+  EXPECT_DOUBLE_EQ(s.volume(), 480.0);
+  EXPECT_EQ(s.stats().leaves, 4 * 3 * 2);  // bricks of 32 cubes over 100 x 80 x 60
+  EXPECT_TRUE(s.isSolid({5, 4, 3}));
+  EXPECT_FALSE(s.isSolid({5, 4, 6.5}));
+}
+
+TEST(StockCut, RejectsBadBoxesAndDensities) {
+  EXPECT_THROW(Stock({{0, 0, 0}, {0, 1, 1}}, options()), std::invalid_argument);
+  StockOptions o = options();
+  o.density = -1;
+  EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
+  o.density = std::nan("");
+  EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
+  o.density = 1e7;
+  EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
+}
+
+TEST(StockCut, GridAlignedPocketRemovesExactlyItsColumns) {
+  for (int brick : {0, 32}) {
+    Stock s(kStock, options(brick));
+    const CutResult r = s.cut(BoxSolid({2, 2, 4}, {5, 6, 7}), {0, 0, 1});
+    // The walls lie on grid planes and the 3-map holds their crossings, so
+    // only the four pocket corners' squares are approximate (5 grid units^3 each).
+    EXPECT_NEAR(r.removed_volume, 24.0, 4 * 0.005 + 1e-9);
+    EXPECT_NEAR(s.volume(), 480.0 - r.removed_volume, 1e-9);
+    EXPECT_TRUE(r.touched);
+    EXPECT_FALSE(r.overhang);
+    EXPECT_EQ(s.stats().splits(), 0);
+    std::vector<geom::Interval> iv;
+    s.solidIntervals(2, 35, 40, iv);  // z line through x = 3.5, y = 4
+    ASSERT_EQ(iv.size(), 1u);
+    EXPECT_NEAR(iv[0].lo, 0.0, 1e-12);
+    EXPECT_NEAR(iv[0].hi, 4.0, 1e-12);
+    s.solidIntervals(0, 40, 50, iv);  // x line through y = 4, z = 5
+    ASSERT_EQ(iv.size(), 2u);
+    EXPECT_NEAR(iv[0].hi, 2.0, 1e-12);
+    EXPECT_NEAR(iv[1].lo, 5.0, 1e-12);
+    EXPECT_NEAR(iv[1].hi, 10.0, 1e-12);
+    EXPECT_FALSE(s.isSolid({3.5, 4, 5}));
+    EXPECT_TRUE(s.isSolid({3.5, 4, 3.9}));
+    EXPECT_NO_THROW(s.checkInvariants());
+  }
+}
+
+TEST(StockCut, SphereFromTheTopRemovesAHemisphere) {
+  Stock s(kStock, options());
+  const CutResult r = s.cut(SphereSolid({5, 4, 6}, 2.0), {0, 0, 1});
+  const double hemi = 2.0 / 3.0 * std::numbers::pi * 8.0;
+  EXPECT_NEAR(r.removed_volume, hemi, 0.01 * hemi);
+  EXPECT_NEAR(s.volume(), 480.0 - r.removed_volume, 1e-9);
+  EXPECT_FALSE(s.isSolid({5, 4, 4.5}));
+  EXPECT_TRUE(s.isSolid({5, 4, 3.8}));
+  std::vector<geom::Interval> iv;
+  s.solidIntervals(2, 50, 40, iv);
+  ASSERT_EQ(iv.size(), 1u);
+  EXPECT_NEAR(iv[0].hi, 4.0, 1e-12);
+  s.checkInvariants();
+}
+
+TEST(StockCut, SideDrillMakesAnOverhangAndStaysExact) {
+  for (bool threeWay : {true, false}) {
+    StockOptions o = options();
+    o.three_way = threeWay;
+    Stock s(kStock, o);
+    // Face the top 0.5 mm (every brick becomes a +z heightmap), then a flat
+    // drill of radius 1 enters the -x face 3 mm deep at y = 4, z = 3: the
+    // thesis's figure 3.8 situation.
+    s.cut(BoxSolid({-1, -1, 5.5}, {11, 9, 7}), {0, 0, 1});
+    EXPECT_NEAR(s.volume(), 480.0 - 40.0, 1e-9);
+    const double before = s.volume();
+    const CutResult r = s.cut(CylinderSolid({-1, 4, 3}, {1, 0, 0}, 1.0, 4.0), {-1, 0, 0});
+    EXPECT_TRUE(r.overhang);
+    const double want = std::numbers::pi * 3.0;
+    // Plain heightmaps see the 5.5 mm face across their columns only through
+    // the trapezoid rule: up to h/2 times its area (2 x 3.2 x 3.2 mm) off.
+    EXPECT_NEAR(r.removed_volume, want, threeWay ? 0.02 * want : 0.02 * want + 0.05 * 20.5);
+    EXPECT_NEAR(s.volume(), before - r.removed_volume, 1e-9);
+    EXPECT_FALSE(s.isSolid({1.5, 4, 3}));
+    EXPECT_TRUE(s.isSolid({1.5, 4, 4.2}));
+    EXPECT_TRUE(s.isSolid({3.2, 4, 3}));
+    std::vector<geom::Interval> iv;
+    s.solidIntervals(0, 40, 30, iv);  // along x through the hole's axis
+    ASSERT_EQ(iv.size(), 1u);
+    EXPECT_NEAR(iv[0].lo, 3.0, 1e-12);
+    s.solidIntervals(2, 15, 40, iv);  // along z through x = 1.5
+    ASSERT_EQ(iv.size(), 2u);
+    // 3-maps hold the exact crossings; plain heightmaps interpolate.
+    const double tol = threeWay ? 1e-12 : 0.1;
+    EXPECT_NEAR(iv[0].hi, 2.0, tol);
+    EXPECT_NEAR(iv[1].lo, 4.0, tol);
+    EXPECT_NEAR(iv[1].hi, 5.5, tol);
+    s.checkInvariants();
+  }
+}
+
+TEST(StockCut, CutOutsideTheStockTouchesNothing) {
+  Stock s(kStock, options());
+  const CutResult r = s.cut(SphereSolid({20, 4, 3}, 2.0), {0, 0, 1});
+  EXPECT_FALSE(r.touched);
+  EXPECT_EQ(r.removed_volume, 0.0);
+  EXPECT_DOUBLE_EQ(s.volume(), 480.0);
+}
+
+TEST(StockCut, SolidIntervalsRejectsLinesOutsideTheGrid) {
+  Stock s(kStock, options());
+  std::vector<geom::Interval> iv;
+  EXPECT_THROW(s.solidIntervals(2, 101, 0, iv), std::out_of_range);
+  EXPECT_THROW(s.solidIntervals(0, -1, 0, iv), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace mdhd::mdh
