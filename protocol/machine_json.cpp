@@ -1,68 +1,23 @@
 #include "protocol/machine_json.h"
 
-#include <algorithm>
-#include <cmath>
-#include <initializer_list>
+#include <string>
+#include <vector>
 
 namespace mdhd::protocol {
 namespace {
 
 using nlohmann::json;
 
-std::string typeName(const json& j) {
-  if (j.is_number()) return "a number";
-  if (j.is_string()) return "the string " + j.dump();
-  if (j.is_boolean()) return j.dump();
-  if (j.is_null()) return "null";
-  if (j.is_array()) return "an array of " + std::to_string(j.size());
-  return "an object";
-}
-
-[[noreturn]] void fail(const std::string& field, const std::string& what, const json& got) {
-  throw MachineJsonError(field, "expected " + what + ", got " + typeName(got));
-}
-
-void requireObject(const json& j, const std::string& field,
-                   std::initializer_list<const char*> allowed) {
-  if (!j.is_object()) fail(field, "an object", j);
-  for (const auto& [key, value] : j.items()) {
-    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
-      std::string list;
-      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
-      throw MachineJsonError(field + "." + key, "unknown field (known: " + list + ")");
-    }
-  }
-}
-
-const json& required(const json& obj, const char* key, const std::string& field) {
-  const auto it = obj.find(key);
-  if (it == obj.end()) throw MachineJsonError(field + "." + key, "missing");
-  return *it;
-}
-
-double number(const json& j, const std::string& field) {
-  if (!j.is_number()) fail(field, "a number", j);
-  return j.get<double>();
-}
-
-std::string string(const json& j, const std::string& field) {
-  if (!j.is_string()) fail(field, "a string", j);
-  return j.get<std::string>();
-}
-
-glm::dvec3 vec3(const json& j, const std::string& field) {
-  if (!j.is_array() || j.size() != 3 ||
-      !std::all_of(j.begin(), j.end(), [](const json& e) { return e.is_number(); })) {
-    fail(field, "an array of 3 numbers", j);
-  }
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
+using fields::fail;
+using fields::number;
+using fields::required;
+using fields::requireObject;
+using fields::string;
+using fields::vec3;
 
 kin::Limits limits(const json& j, const std::string& field) {
-  if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number()) {
-    fail(field, "an array of 2 numbers [min, max]", j);
-  }
-  return {j[0].get<double>(), j[1].get<double>()};
+  if (!j.is_array() || j.size() != 2) fail(field, "an array of 2 numbers [min, max]", j);
+  return {number(j[0], field + "[0]"), number(j[1], field + "[1]")};
 }
 
 kin::Joint joint(const json& j, const std::string& field) {
@@ -97,7 +52,7 @@ std::vector<int> chain(const json& j, const kin::Machine& m, const std::string& 
     const std::string f = field + "[" + std::to_string(i) + "]";
     const std::string name = string(j[i], f);
     const int index = jointByName(m, name);
-    if (index < 0) throw MachineJsonError(f, "unknown joint \"" + name + "\"");
+    if (index < 0) throw FieldError(f, "unknown joint \"" + name + "\"");
     out.push_back(index);
   }
   return out;
@@ -107,7 +62,7 @@ void home(const json& j, kin::Machine& m, const std::string& field) {
   if (!j.is_object()) fail(field, "an object of joint values", j);
   for (const auto& [key, value] : j.items()) {
     const std::string f = field + "." + key;
-    if (jointByName(m, key) < 0) throw MachineJsonError(f, "the machine has no joint " + key);
+    if (jointByName(m, key) < 0) throw FieldError(f, "the machine has no joint " + key);
     const double v = number(value, f);
     // A joint with a bad name is reported by validation; its home has nowhere to go.
     if (const auto axis = kin::axisOfName(key)) m.home[*axis] = v;
@@ -133,8 +88,8 @@ kin::Machine machineFromJson(const json& j, const std::string& path) {
     kin::Joint jt = joint(joints[i], field);
     // Chains and home name joints, so a duplicate must be caught before them.
     if (const int k = jointByName(m, jt.name); k >= 0) {
-      throw MachineJsonError(field + ".name", "duplicate joint name " + jt.name + " (also joints[" +
-                                                  std::to_string(k) + "])");
+      throw FieldError(field + ".name", "duplicate joint name " + jt.name + " (also joints[" +
+                                            std::to_string(k) + "])");
     }
     m.joints.push_back(std::move(jt));
   }
@@ -146,7 +101,7 @@ kin::Machine machineFromJson(const json& j, const std::string& path) {
   m.max_feed = number(required(j, "max_feed", path), path + ".max_feed");
   const auto issues = kin::validateMachine(m);
   if (!issues.empty()) {
-    throw MachineJsonError(path + "." + issues.front().field, issues.front().message);
+    throw FieldError(path + "." + issues.front().field, issues.front().message);
   }
   return m;
 }

@@ -107,14 +107,14 @@ TEST(MachineJson, TypeErrorsNameTheField) {
   EXPECT_EQ(errorOf([](json& j) {
               j["joints"][3]["axis"] = {1, "0", 0};
             }),
-            "machine.joints[3].axis: expected an array of 3 numbers, got an array of 3");
+            "machine.joints[3].axis[1]: expected a number, got the string \"0\"");
   EXPECT_EQ(errorOf([](json& j) { j["joints"][0]["origin"] = "here"; }),
             "machine.joints[0].origin: expected an array of 3 numbers, got the string \"here\"");
   EXPECT_EQ(errorOf([](json& j) { j["joints"][1]["type"] = "prismatic"; }),
             "machine.joints[1].type: expected \"linear\" or \"rotary\", got the string "
             "\"prismatic\"");
   EXPECT_EQ(errorOf([](json& j) { j["joints"][1]["name"] = 7; }),
-            "machine.joints[1].name: expected a string, got a number");
+            "machine.joints[1].name: expected a string, got the number 7");
   EXPECT_EQ(errorOf([](json& j) {
               j["joints"][2]["limits"] = {1, 2, 3};
             }),
@@ -123,7 +123,7 @@ TEST(MachineJson, TypeErrorsNameTheField) {
   EXPECT_EQ(errorOf([](json& j) { j["joints"] = json::object(); }),
             "machine.joints: expected an array of joints, got an object");
   EXPECT_EQ(errorOf([](json& j) { j["joints"][4] = 5; }),
-            "machine.joints[4]: expected an object, got a number");
+            "machine.joints[4]: expected an object, got the number 5");
   EXPECT_EQ(errorOf([](json& j) { j["rapid_feed"] = true; }),
             "machine.rapid_feed: expected a number, got true");
   EXPECT_EQ(errorOf([](json& j) { j["spindle_axis"] = nullptr; }),
