@@ -1,0 +1,63 @@
+#include "sim/mesh/loop_triangulation.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace mdhd::mesh {
+
+namespace {
+
+// Shape quality of a triangle facing along `normal`: twice its area over the
+// sum of its squared sides (largest for an equilateral), negative if it faces
+// away or is degenerate.
+double quality(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+               const glm::dvec3& normal) {
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double len = glm::length(n);
+  if (len <= kMinDoubleArea || glm::dot(n, normal) <= 0.0) return -1.0;
+  const glm::dvec3 ab = b - a, bc = c - b, ca = a - c;
+  return len / (glm::dot(ab, ab) + glm::dot(bc, bc) + glm::dot(ca, ca));
+}
+
+}  // namespace
+
+bool triangulateLoop(std::span<const glm::dvec3> p, std::span<const std::uint8_t> masks,
+                     std::vector<std::array<int, 3>>& out, glm::dvec3& centre) {
+  const int n = static_cast<int>(p.size());
+  if (n == 3) {
+    out.push_back({0, 1, 2});
+    return true;
+  }
+  // Newell's normal: the direction the polygon faces.
+  glm::dvec3 normal(0.0);
+  for (int i = 0; i < n; ++i) normal += glm::cross(p[i], p[(i + 1) % n]);
+  int bestApex = -1;
+  double bestScore = 0.0;
+  for (int k = 0; k < n; ++k) {
+    double score = 1e300;
+    for (int i = 1; i + 1 < n && score > 0.0; ++i) {
+      const int j = (k + i) % n, j1 = (k + i + 1) % n;
+      if (i >= 2 && (masks[k] & masks[j]) != 0)
+        score = -1.0;
+      else
+        score = std::min(score, quality(p[k], p[j], p[j1], normal));
+    }
+    if (score > bestScore) {
+      bestScore = score;
+      bestApex = k;
+    }
+  }
+  if (bestApex >= 0) {
+    for (int i = 1; i + 1 < n; ++i)
+      out.push_back({bestApex, (bestApex + i) % n, (bestApex + i + 1) % n});
+    return true;
+  }
+  centre = glm::dvec3(0.0);
+  for (const glm::dvec3& q : p) centre += q;
+  centre /= double(n);
+  for (int i = 0; i < n; ++i) out.push_back({n, i, (i + 1) % n});
+  return false;
+}
+
+}  // namespace mdhd::mesh

@@ -1,0 +1,309 @@
+#include "sim/mesh/mesher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "sim/mesh/cube_cases.h"
+#include "sim/mesh/loop_triangulation.h"
+#include "sim/mesh/stock_view.h"
+
+namespace mdhd::mesh {
+
+namespace {
+
+GridPoint cornerOf(const GridPoint& c, int corner) {
+  return {c[0] + (corner & 1), c[1] + ((corner >> 1) & 1), c[2] + ((corner >> 2) & 1)};
+}
+
+// One polygon vertex while a loop is assembled: grid position and identity.
+struct LoopPoint {
+  glm::dvec3 g{0.0};
+  VertexKey key;
+  std::uint8_t faces = 0;
+};
+
+class Mesher {
+ public:
+  Mesher(const StockView& view, MeshSink& sink, MeshStats& stats)
+      : view_(view), sink_(sink), stats_(stats) {}
+
+  void interior(int leaf);
+  void exterior(int leaf);
+
+ private:
+  void cube(const GridPoint& c);
+  void square(const GridPoint& cubeMin, int face);
+  void partialLeaf(const LeafInfo& l);
+  void uniformLeaf(const LeafInfo& l);
+  double edgeT(const GridPoint& p, int axis);
+  LoopPoint crossingPoint(const GridPoint& p, int axis, double t) const;
+  void emit(std::span<const LoopPoint> loop, bool exterior);
+  MeshVertex vertex(const LoopPoint& p) const {
+    return MeshVertex{view_.origin() + p.g * view_.spacing(), p.key};
+  }
+
+  const StockView& view_;
+  MeshSink& sink_;
+  MeshStats& stats_;
+  int hint_ = -1;
+  std::uint64_t nextInner_ = 0;
+  std::vector<std::array<int, 3>> tris_;
+  std::vector<glm::dvec3> pts_;
+  std::vector<std::uint8_t> masks_;
+};
+
+double Mesher::edgeT(const GridPoint& p, int axis) {
+  const double x = view_.crossing(p, axis, hint_);
+  double t = x - p[axis];
+  if (!std::isfinite(t)) {
+    ++stats_.fallbackCrossings;
+    t = 0.5;
+  }
+  return std::clamp(t, kCrossingMargin, 1.0 - kCrossingMargin);
+}
+
+LoopPoint Mesher::crossingPoint(const GridPoint& p, int axis, double t) const {
+  LoopPoint q;
+  q.g = glm::dvec3(p[0], p[1], p[2]);
+  q.g[axis] += t;
+  q.key = VertexKey{packGridVertex(p[0], p[1], p[2]), static_cast<VertexKind>(axis)};
+  return q;
+}
+
+void Mesher::emit(std::span<const LoopPoint> loop, bool exterior) {
+  pts_.clear();
+  masks_.clear();
+  for (const LoopPoint& p : loop) {
+    pts_.push_back(p.g);
+    masks_.push_back(p.faces);
+  }
+  tris_.clear();
+  glm::dvec3 centre(0.0);
+  const bool plain = triangulateLoop(pts_, masks_, tris_, centre);
+  LoopPoint mid;
+  if (!plain) {
+    ++stats_.centreVertices;
+    mid.g = centre;
+    mid.key = VertexKey{nextInner_++, VertexKind::kInner};
+  }
+  const int n = static_cast<int>(loop.size());
+  for (const auto& t : tris_) {
+    const LoopPoint& a = t[0] == n ? mid : loop[t[0]];
+    const LoopPoint& b = t[1] == n ? mid : loop[t[1]];
+    const LoopPoint& c = t[2] == n ? mid : loop[t[2]];
+    if (glm::length(glm::cross(b.g - a.g, c.g - a.g)) <= kMinDoubleArea)
+      ++stats_.degenerateTriangles;
+    sink_.triangle(vertex(a), vertex(b), vertex(c), exterior);
+    ++stats_.triangles;
+    stats_.exteriorTriangles += exterior ? 1 : 0;
+  }
+}
+
+void Mesher::cube(const GridPoint& c) {
+  unsigned solid = 0;
+  for (int i = 0; i < 8; ++i)
+    if (view_.solid(cornerOf(c, i), hint_)) solid |= 1u << i;
+  if (solid == 0 || solid == 0xffu) return;
+  const auto& edges = cubeEdges();
+  double t[12];
+  for (int e = 0; e < 12; ++e) {
+    const bool s0 = (solid >> edges[e].from) & 1u, s1 = (solid >> edges[e].to) & 1u;
+    t[e] = s0 != s1 ? edgeT(cornerOf(c, edges[e].from), edges[e].axis) : 0.5;
+  }
+  const CubeLoops loops = cubeLoops(solid, t);
+  ++stats_.surfaceCubes;
+  int at = 0;
+  LoopPoint loop[12];
+  for (int l = 0; l < loops.count; ++l) {
+    for (int k = 0; k < loops.size[l]; ++k) {
+      const int e = loops.edges[at + k];
+      loop[k] = crossingPoint(cornerOf(c, edges[e].from), edges[e].axis, t[e]);
+      loop[k].faces = static_cast<std::uint8_t>(edgeFaces(e));
+    }
+    emit(std::span<const LoopPoint>(loop, loops.size[l]), false);
+    at += loops.size[l];
+    ++stats_.loops;
+  }
+}
+
+void Mesher::square(const GridPoint& cubeMin, int faceId) {
+  const CubeFace& face = cubeFaces()[faceId];
+  const auto& edges = cubeEdges();
+  unsigned solid = 0;
+  for (int corner : face.corners)
+    if (view_.solid(cornerOf(cubeMin, corner), hint_)) solid |= 1u << corner;
+  if (solid == 0) return;
+  double t[12] = {};
+  // Items counter-clockwise from outside: corner i, then the crossing on edge i.
+  LoopPoint items[8];
+  bool isCorner[8] = {}, isExit[8] = {}, present[8] = {};
+  int itemOfEdge[12];
+  for (int i = 0; i < 4; ++i) {
+    const int c0 = face.corners[i], c1 = face.corners[(i + 1) % 4], e = face.edges[i];
+    const bool s0 = (solid >> c0) & 1u, s1 = (solid >> c1) & 1u;
+    if (s0) {
+      const GridPoint p = cornerOf(cubeMin, c0);
+      items[2 * i].g = glm::dvec3(p[0], p[1], p[2]);
+      items[2 * i].key = VertexKey{packGridVertex(p[0], p[1], p[2]), VertexKind::kCorner};
+      isCorner[2 * i] = present[2 * i] = true;
+    }
+    itemOfEdge[e] = 2 * i + 1;
+    if (s0 != s1) {
+      t[e] = edgeT(cornerOf(cubeMin, edges[e].from), edges[e].axis);
+      items[2 * i + 1] = crossingPoint(cornerOf(cubeMin, edges[e].from), edges[e].axis, t[e]);
+      present[2 * i + 1] = true;
+      isExit[2 * i + 1] = s0;
+    }
+  }
+  std::array<std::pair<int, int>, 2> segs;
+  const int nseg = faceSegments(face, solid, t, segs);
+  int jump[8];
+  for (int i = 0; i < nseg; ++i) jump[itemOfEdge[segs[i].second]] = itemOfEdge[segs[i].first];
+  bool used[8] = {};
+  LoopPoint poly[8];
+  for (int start = 0; start < 8; start += 2) {
+    if (!isCorner[start] || used[start]) continue;
+    int n = 0;
+    int k = start;
+    do {
+      used[k] = true;
+      poly[n++] = items[k];
+      if (isExit[k]) {
+        k = jump[k];
+        used[k] = true;
+        poly[n++] = items[k];
+      }
+      do k = (k + 1) % 8;
+      while (!present[k]);
+    } while (k != start && n < 8);
+    emit(std::span<const LoopPoint>(poly, n), true);
+  }
+}
+
+void Mesher::uniformLeaf(const LeafInfo& l) {
+  const bool solid = l.kind == LeafKind::kSolid;
+  const GridPoint& n = view_.cubes();
+  bool layer[3] = {};
+  for (int a = 0; a < 3; ++a) {
+    if (l.hi[a] == n[a]) continue;  // the grid's top plane is this leaf's own
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    GridPoint p{};
+    p[a] = l.hi[a];
+    for (p[v] = l.lo[v]; p[v] <= l.hi[v] && !layer[a]; ++p[v])
+      for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u])
+        if (view_.solid(p, hint_) != solid) {
+          layer[a] = true;
+          break;
+        }
+  }
+  // Only the cube layers under a hi face with a disagreeing vertex can hold surface.
+  for (int a = 0; a < 3; ++a) {
+    if (!layer[a]) continue;
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    GridPoint c{};
+    c[a] = l.hi[a] - 1;
+    for (c[v] = l.lo[v]; c[v] < l.hi[v]; ++c[v])
+      for (c[u] = l.lo[u]; c[u] < l.hi[u]; ++c[u]) {
+        bool done = false;  // already met in an earlier marked layer
+        for (int b = 0; b < a; ++b) done = done || (layer[b] && c[b] == l.hi[b] - 1);
+        if (!done) cube(c);
+      }
+  }
+}
+
+void Mesher::partialLeaf(const LeafInfo& l) {
+  const int a = l.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  const GridPoint& n = view_.cubes();
+  const int cubesA = l.hi[a] - l.lo[a], levels = cubesA + 1;
+  const bool topForeign = l.hi[a] < n[a];
+  // hint_ is this leaf: columnSolidCount reads it directly.
+  GridPoint c{};
+  for (c[v] = l.lo[v]; c[v] < l.hi[v]; ++c[v])
+    for (c[u] = l.lo[u]; c[u] < l.hi[u]; ++c[u]) {
+      int nmin = levels, nmax = 0;
+      for (int d = 0; d < 4; ++d) {
+        const int k = view_.columnSolidCount(hint_, c[u] + (d & 1), c[v] + (d >> 1));
+        nmin = std::min(nmin, k);
+        nmax = std::max(nmax, k);
+      }
+      int j0 = 0, j1 = cubesA - 1;
+      const bool sideForeign =
+          (c[u] + 1 == l.hi[u] && l.hi[u] < n[u]) || (c[v] + 1 == l.hi[v] && l.hi[v] < n[v]);
+      if (!sideForeign) {
+        if (l.sign > 0) {
+          j0 = std::max(0, nmin - 1);
+          j1 = std::min(cubesA - 1, nmax - 1);
+        } else {
+          j0 = std::max(0, levels - nmax - 1);
+          j1 = std::min(cubesA - 1, levels - nmin - 1);
+        }
+      }
+      for (int j = j0; j <= j1; ++j) {
+        c[a] = l.lo[a] + j;
+        cube(c);
+      }
+      if (topForeign && j1 < cubesA - 1) {
+        c[a] = l.hi[a] - 1;
+        cube(c);
+      }
+    }
+}
+
+void Mesher::interior(int leaf) {
+  hint_ = leaf;
+  const LeafInfo& l = view_.leaf(leaf);
+  if (l.kind == LeafKind::kPartial)
+    partialLeaf(l);
+  else
+    uniformLeaf(l);
+}
+
+void Mesher::exterior(int leaf) {
+  hint_ = leaf;
+  const LeafInfo& l = view_.leaf(leaf);
+  const GridPoint& n = view_.cubes();
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    for (int side = 0; side < 2; ++side) {
+      if (side == 0 ? l.lo[a] != 0 : l.hi[a] != n[a]) continue;
+      GridPoint c{};
+      c[a] = side == 0 ? 0 : n[a] - 1;
+      for (c[v] = l.lo[v]; c[v] < l.hi[v]; ++c[v])
+        for (c[u] = l.lo[u]; c[u] < l.hi[u]; ++c[u]) square(c, 2 * a + side);
+    }
+  }
+}
+
+bool overlaps(const LeafInfo& l, const StockView& view, const geom::Aabb& region) {
+  for (int a = 0; a < 3; ++a) {
+    const double lo = view.origin()[a] + l.lo[a] * view.spacing();
+    const double hi = view.origin()[a] + l.hi[a] * view.spacing();
+    if (hi < region.lo[a] || lo > region.hi[a]) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& options) {
+  MeshStats stats;
+  stats.brokenLeaves = view.brokenLeaves();
+  Mesher mesher(view, sink, stats);
+  for (int i = 0; i < view.leafCount(); ++i) {
+    if (options.region && !overlaps(view.leaf(i), view, *options.region)) continue;
+    ++stats.leaves;
+    mesher.interior(i);
+    mesher.exterior(i);
+  }
+  return stats;
+}
+
+MeshStats meshStock(const mdh::Stock& stock, MeshSink& sink, const MeshOptions& options) {
+  const StockView view(stock);
+  return meshStock(view, sink, options);
+}
+
+}  // namespace mdhd::mesh

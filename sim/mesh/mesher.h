@@ -1,0 +1,46 @@
+#pragma once
+// The triangle mesh of an mdh-map (thesis chapter 4): per grid cube the
+// marching-cubes loops of the 3-map (interior mesh, 4.3.2), per square of the
+// stock's boundary box its solid polygon (exterior mesh, 4.3.1). Every vertex
+// and edge crossing is read from one owner leaf (stock_view.h), so the mesh
+// is closed across cells of any directions, in one pass over the leaves.
+#include <cstdint>
+#include <optional>
+
+#include "sim/geometry/line_solid.h"
+#include "sim/mesh/mesh_sink.h"
+
+namespace mdhd::mdh {
+class Stock;
+}
+
+namespace mdhd::mesh {
+
+class StockView;
+
+// Crossings are kept this far (grid units) from the edge's ends, so no
+// triangle collapses where the surface passes through a grid vertex.
+inline constexpr double kCrossingMargin = 1e-3;
+
+struct MeshOptions {
+  // Only the cells overlapping this box (mm, W), for viewers. The result is
+  // then open where the region cuts through material.
+  std::optional<geom::Aabb> region;
+};
+
+struct MeshStats {
+  std::int64_t triangles = 0;
+  std::int64_t exteriorTriangles = 0;  // on the stock's boundary box
+  std::int64_t surfaceCubes = 0;       // cubes with a loop
+  std::int64_t loops = 0;
+  std::int64_t centreVertices = 0;     // loops that needed an added vertex
+  std::int64_t fallbackCrossings = 0;  // edges whose owner had no crossing (engine disagreement)
+  std::int64_t degenerateTriangles = 0;
+  int leaves = 0;        // leaves meshed
+  int brokenLeaves = 0;  // see StockView::brokenLeaves
+};
+
+MeshStats meshStock(const mdh::Stock& stock, MeshSink& sink, const MeshOptions& options = {});
+MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& options = {});
+
+}  // namespace mdhd::mesh

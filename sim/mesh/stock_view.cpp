@@ -1,0 +1,160 @@
+// The adapter: everything the mesher reads from sim/mdh goes through here.
+#include "sim/mesh/stock_view.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "sim/mdh/stock.h"
+
+namespace mdhd::mesh {
+
+namespace {
+
+constexpr std::int64_t kMaxBuckets = std::int64_t{1} << 20;
+
+}  // namespace
+
+StockView::StockView(const mdh::Stock& stock) {
+  const mdh::GridSpec& g = stock.grid();
+  origin_ = g.origin;
+  spacing_ = g.h;
+  cubes_ = g.cubes;
+  stock.forEachLeaf([&](const mdh::LeafView& lv) {
+    Leaf leaf;
+    leaf.info.lo = lv.box.lo;
+    leaf.info.hi = lv.box.hi;
+    if (lv.state == mdh::CellState::kPartial && lv.map != nullptr) {
+      leaf.info.kind = LeafKind::kPartial;
+      leaf.info.axis = lv.map->axis();
+      leaf.info.sign = lv.map->direction().sign;
+      leaf.map = lv.map;
+      if (lv.map->threeWay()) indexRows(leaf);
+      brokenLeaves_ += leaf.rowsBroken ? 1 : 0;
+    } else {
+      leaf.info.kind = lv.state == mdh::CellState::kEmpty ? LeafKind::kEmpty : LeafKind::kSolid;
+    }
+    leaves_.push_back(std::move(leaf));
+  });
+  auto bucketCount = [&] {
+    std::int64_t n = 1;
+    for (int a = 0; a < 3; ++a) n *= cubes_[a] / bucketSize_ + 1;
+    return n;
+  };
+  while (bucketCount() > kMaxBuckets) bucketSize_ *= 2;
+  for (int a = 0; a < 3; ++a) buckets_[a] = cubes_[a] / bucketSize_ + 1;
+  bucketLeaves_.resize(static_cast<std::size_t>(bucketCount()));
+  for (int i = 0; i < leafCount(); ++i) {
+    GridPoint b0{}, b1{};
+    for (int a = 0; a < 3; ++a) {
+      const LeafInfo& l = leaves_[i].info;
+      const int top = l.hi[a] == cubes_[a] ? l.hi[a] : l.hi[a] - 1;  // last owned coordinate
+      b0[a] = l.lo[a] / bucketSize_;
+      b1[a] = top / bucketSize_;
+    }
+    for (int z = b0[2]; z <= b1[2]; ++z)
+      for (int y = b0[1]; y <= b1[1]; ++y)
+        for (int x = b0[0]; x <= b1[0]; ++x)
+          bucketLeaves_[x + buckets_[0] * (y + buckets_[1] * z)].push_back(i);
+  }
+}
+
+StockView::~StockView() = default;
+
+void StockView::indexRows(Leaf& leaf) {
+  const mdh::ThreeMap& m = *leaf.map;
+  for (int f = 0; f < 2; ++f) {
+    const int edges = m.edgesInRow(f);
+    leaf.rowStart[f].assign(static_cast<std::size_t>(m.rowCount(f)) * (edges + 1), 0);
+    for (int r = 0; r < m.rowCount(f); ++r) {
+      int pos = 0;
+      int* start = &leaf.rowStart[f][static_cast<std::size_t>(r) * (edges + 1)];
+      for (int e = 0; e < edges; ++e) {
+        start[e] = pos;
+        int first = 0, count = 0;
+        m.straddle(m.rowHeight(f, r, e), m.rowHeight(f, r, e + 1), first, count);
+        pos += count;
+      }
+      start[edges] = pos;
+      if (static_cast<std::size_t>(pos) != m.row(f, r).size()) {
+        // The engine broke its packing rule: do not index past the row;
+        // this leaf's crossings are interpolated instead.
+        leaf.rowStart[0].clear();
+        leaf.rowStart[1].clear();
+        leaf.rowsBroken = true;
+        return;
+      }
+    }
+  }
+}
+
+int StockView::bucketOf(const GridPoint& p) const {
+  GridPoint b{};
+  for (int a = 0; a < 3; ++a) b[a] = p[a] / bucketSize_;
+  return b[0] + buckets_[0] * (b[1] + buckets_[1] * b[2]);
+}
+
+bool StockView::owns(int leaf, const GridPoint& p) const {
+  const LeafInfo& l = leaves_[leaf].info;
+  for (int a = 0; a < 3; ++a) {
+    if (p[a] < l.lo[a]) return false;
+    if (p[a] >= l.hi[a] && !(p[a] == l.hi[a] && l.hi[a] == cubes_[a])) return false;
+  }
+  return true;
+}
+
+int StockView::ownerOf(const GridPoint& p, int hint) const {
+  if (hint >= 0 && owns(hint, p)) return hint;
+  for (int a = 0; a < 3; ++a)
+    if (p[a] < 0 || p[a] > cubes_[a])
+      throw std::out_of_range("mesh: grid vertex (" + std::to_string(p[0]) + ", " +
+                              std::to_string(p[1]) + ", " + std::to_string(p[2]) +
+                              ") is outside the stock");
+  for (int i : bucketLeaves_[bucketOf(p)])
+    if (owns(i, p)) return i;
+  throw std::logic_error("mesh: no leaf holds grid vertex (" + std::to_string(p[0]) + ", " +
+                         std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")");
+}
+
+bool StockView::solidIn(int leaf, const GridPoint& p) const {
+  const Leaf& l = leaves_[leaf];
+  if (l.info.kind != LeafKind::kPartial) return l.info.kind == LeafKind::kSolid;
+  const mdh::ThreeMap& m = *l.map;
+  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+  return m.solidAt(m.height(p[u] - l.info.lo[u], p[v] - l.info.lo[v]), p[a]);
+}
+
+int StockView::columnSolidCount(int leaf, int pu, int pv) const {
+  const Leaf& l = leaves_[leaf];
+  const mdh::ThreeMap& m = *l.map;
+  return m.solidCount(m.height(pu - l.info.lo[m.uAxis()], pv - l.info.lo[m.vAxis()]));
+}
+
+double StockView::crossingIn(int leaf, const GridPoint& p, int axis) const {
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  const Leaf& l = leaves_[leaf];
+  if (l.info.kind != LeafKind::kPartial) return kNone;
+  const mdh::ThreeMap& m = *l.map;
+  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+  const GridPoint& lo = l.info.lo;
+  if (p[axis] >= l.info.hi[axis]) return kNone;  // the edge leaves the cell
+  if (axis == a) {
+    const double h = m.height(p[u] - lo[u], p[v] - lo[v]);
+    return m.solidAt(h, p[a]) != m.solidAt(h, p[a] + 1) ? h : kNone;
+  }
+  const int f = axis == u ? 0 : 1;
+  const int r = f == 0 ? p[v] - lo[v] : p[u] - lo[u];
+  const int e = p[axis] - lo[axis];
+  const double h0 = m.rowHeight(f, r, e), h1 = m.rowHeight(f, r, e + 1);
+  int first = 0, count = 0;
+  m.straddle(h0, h1, first, count);
+  const int k = p[a];
+  if (k < first || k >= first + count) return kNone;
+  if (!m.threeWay() || l.rowsBroken) return m.interpolatedCrossing(h0, h1, p[axis], k);
+  const int edges = m.edgesInRow(f);
+  const int start = l.rowStart[f][static_cast<std::size_t>(r) * (edges + 1) + e];
+  return m.row(f, r)[static_cast<std::size_t>(start + (k - first))];
+}
+
+}  // namespace mdhd::mesh
