@@ -2,14 +2,12 @@
 
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 namespace mdhd::gcode {
 namespace {
 
 constexpr double kToleranceEqual = 0.0001;  // LinuxCNC's TOLERANCE_EQUAL for EQ / NE
-constexpr double kDegree = std::numbers::pi / 180.0;
 
 enum class Op {
   kNone,
@@ -86,8 +84,35 @@ std::pair<Op, std::size_t> peekOperator(const Cursor& c) {
   return {Op::kNone, 0};
 }
 
-void checkFinite(double value, const Cursor& c, std::size_t at) {
-  if (!std::isfinite(value)) c.failAt(at, "Calculation result is not a finite number");
+// LinuxCNC checks every value it reads for NaN and infinity.
+double checkFinite(double value, const Cursor& c, std::size_t at) {
+  if (std::isnan(value)) c.failAt(at, "Calculation resulted in 'not a number'");
+  if (std::isinf(value)) c.failAt(at, "Calculation resulted in 'infinity'");
+  return value;
+}
+
+// Trigonometry in degrees, computed in long double as LinuxCNC does (its
+// M_PIl makes the argument long double), so results agree to the last bit.
+constexpr long double kPi = 3.141592653589793238462643383279502884L;
+double sinDegrees(double x) {
+  return static_cast<double>(std::sin((x * kPi) / 180.0L));
+}
+double cosDegrees(double x) {
+  return static_cast<double>(std::cos((x * kPi) / 180.0L));
+}
+double tanDegrees(double x) {
+  return static_cast<double>(std::tan((x * kPi) / 180.0L));
+}
+double toDegrees(double radians) {
+  return static_cast<double>((radians * 180.0L) / kPi);
+}
+
+// LinuxCNC's ROUND: (int)(x +- 0.5); beyond int range, where that cast is
+// undefined, the nearest integer.
+double roundLikeLinuxCnc(double x) {
+  const double shifted = x + (x < 0.0 ? -0.5 : 0.5);
+  if (std::fabs(shifted) < 2147483647.0) return std::trunc(shifted);
+  return std::round(x);
 }
 
 double apply(Op op, double left, double right, const Cursor& c, std::size_t at) {
@@ -106,8 +131,7 @@ double apply(Op op, double left, double right, const Cursor& c, std::size_t at) 
       if (right == 0.0) c.failAt(at, "Attempt to divide by zero");
       result = left / right;
       break;
-    case Op::kMod:
-      if (right == 0.0) c.failAt(at, "Attempt to divide by zero");
+    case Op::kMod:  // by zero gives NaN, reported as LinuxCNC does
       result = std::fmod(left, right);
       if (result < 0.0) result += std::fabs(right);  // LinuxCNC: MOD is never negative
       break;
@@ -126,14 +150,14 @@ double apply(Op op, double left, double right, const Cursor& c, std::size_t at) 
     case Op::kGt:
       result = left > right ? 1.0 : 0.0;
       break;
-    case Op::kGe:
-      result = left >= right ? 1.0 : 0.0;
+    case Op::kGe:  // LinuxCNC: GE and LE also hold within the EQ tolerance
+      result = (std::fabs(left - right) < kToleranceEqual || left >= right) ? 1.0 : 0.0;
       break;
     case Op::kLt:
       result = left < right ? 1.0 : 0.0;
       break;
     case Op::kLe:
-      result = left <= right ? 1.0 : 0.0;
+      result = (std::fabs(left - right) < kToleranceEqual || left <= right) ? 1.0 : 0.0;
       break;
     case Op::kAnd:
       result = (left != 0.0 && right != 0.0) ? 1.0 : 0.0;
@@ -147,7 +171,6 @@ double apply(Op op, double left, double right, const Cursor& c, std::size_t at) 
     case Op::kNone:
       break;
   }
-  checkFinite(result, c, at);
   return result;
 }
 
@@ -172,32 +195,43 @@ void ExpressionReader::enter(const Cursor& c) {
 double ExpressionReader::readRealValue(Cursor& c) {
   DepthGuard guard(depth_);
   enter(c);
+  const std::size_t start = c.index();
   const char ch = c.peek();
-  if (ch == '[') return readExpression(c);
-  if (ch == '#') {
+  double value = 0.0;
+  if (c.atEnd()) {
+    c.fail("No characters found in reading real value");
+  } else if (ch == '[') {
+    value = readExpression(c);
+  } else if (ch == '#') {
     const ParameterRef ref = readParameterRef(c);
-    return parameterValue(ref, c);
-  }
-  if (ch == '-') {
+    value = parameterValue(ref, c);
+  } else if (ch == '-') {
     c.advance();
-    return -readRealValue(c);
-  }
-  if (ch == '+') {
+    value = -readRealValue(c);
+  } else if (ch == '+') {
     c.advance();
-    return readRealValue(c);
+    value = readRealValue(c);
+  } else if (isLetter(ch)) {
+    value = readFunction(c);
+  } else {
+    value = c.readUnsignedNumber();
   }
-  if (isLetter(ch)) return readFunction(c);
-  return c.readUnsignedNumber();
+  return checkFinite(value, c, start);
 }
 
 int ExpressionReader::readIntegerValue(Cursor& c) {
   const std::size_t start = c.index();
   const double value = readRealValue(c);
-  const double rounded = std::nearbyint(value);
-  if (std::fabs(value - rounded) > kToleranceEqual)
+  if (std::fabs(value) > 2e9) c.failAt(start, "Integer value out of range");
+  // As LinuxCNC: within 0.0001 of an integer counts as that integer.
+  const double below = std::floor(value);
+  double result = below;
+  if (value - below > 0.9999) {
+    result = std::ceil(value);
+  } else if (value - below > 0.0001) {
     c.failAt(start, "Non-integer value for integer");
-  if (std::fabs(rounded) > 1e9) c.failAt(start, "Parameter number out of range");
-  return static_cast<int>(rounded);
+  }
+  return static_cast<int>(result);
 }
 
 double ExpressionReader::readExpression(Cursor& c) {
@@ -208,7 +242,7 @@ double ExpressionReader::readExpression(Cursor& c) {
   const double value = readBinary(c, 0);
   if (c.atEnd()) c.failAt(open, "Unclosed expression (missing ']')");
   c.advance();  // ']'
-  return value;
+  return checkFinite(value, c, open);
 }
 
 double ExpressionReader::readBinary(Cursor& c, int min_precedence) {
@@ -247,9 +281,9 @@ double ExpressionReader::readFunction(Cursor& c) {
         "abs", "acos", "asin",  "atan", "cos",  "exp", "fix",
         "fup", "ln",   "round", "sin",  "sqrt", "tan", "exists"};
     for (std::string_view known : kNames) {
-      if (name == known) c.fail("Left bracket missing after function name " + std::string(name));
+      if (name == known) c.fail("Left bracket missing after unary operation name");
     }
-    c.failAt(start, "No digits found where real number should be");
+    c.failAt(start, "Unknown word where unary operation could be");
   }
   if (name == "exists") return readExists(c);
   const double arg = readExpression(c);
@@ -258,18 +292,18 @@ double ExpressionReader::readFunction(Cursor& c) {
     result = std::fabs(arg);
   } else if (name == "acos") {
     if (arg < -1.0 || arg > 1.0) c.failAt(start, "Argument to ACOS out of range");
-    result = std::acos(arg) / kDegree;
+    result = toDegrees(std::acos(arg));
   } else if (name == "asin") {
     if (arg < -1.0 || arg > 1.0) c.failAt(start, "Argument to ASIN out of range");
-    result = std::asin(arg) / kDegree;
+    result = toDegrees(std::asin(arg));
   } else if (name == "atan") {
     if (c.peek() != '/') c.fail("Slash missing after first ATAN argument");
     c.advance();
     if (c.peek() != '[') c.fail("Left bracket missing after slash with ATAN");
     const double x = readExpression(c);
-    result = std::atan2(arg, x) / kDegree;
+    result = toDegrees(std::atan2(arg, x));
   } else if (name == "cos") {
-    result = std::cos(arg * kDegree);
+    result = cosDegrees(arg);
   } else if (name == "exp") {
     result = std::exp(arg);
   } else if (name == "fix") {
@@ -280,18 +314,17 @@ double ExpressionReader::readFunction(Cursor& c) {
     if (arg <= 0.0) c.failAt(start, "Zero or negative argument to LN");
     result = std::log(arg);
   } else if (name == "round") {
-    result = std::round(arg);  // half away from zero, as LinuxCNC
+    result = roundLikeLinuxCnc(arg);
   } else if (name == "sin") {
-    result = std::sin(arg * kDegree);
+    result = sinDegrees(arg);
   } else if (name == "sqrt") {
     if (arg < 0.0) c.failAt(start, "Negative argument to SQRT");
     result = std::sqrt(arg);
   } else if (name == "tan") {
-    result = std::tan(arg * kDegree);
+    result = tanDegrees(arg);
   } else {
     c.failAt(start, "Unknown function '" + std::string(name) + "'");
   }
-  checkFinite(result, c, start);
   return result;
 }
 
@@ -315,7 +348,7 @@ ParameterRef ExpressionReader::readParameterRef(Cursor& c) {
   if (c.peek() == '<') {
     const std::string_view rest = c.rest();
     const std::size_t close = rest.find('>');
-    if (close == std::string_view::npos) c.fail("Named parameter not terminated by '>'");
+    if (close == std::string_view::npos) c.fail("Named parameter not terminated");
     if (close == 1) c.fail("Named parameter has no name");
     ref.named = true;
     ref.name = rest.substr(1, close - 1);

@@ -60,17 +60,42 @@ double Cursor::readUnsignedNumber() {
   const std::size_t start = index_;
   std::size_t i = start;
   std::size_t digits = 0;
-  while (i < code.size() && isDigit(code[i])) ++i, ++digits;
-  if (i < code.size() && code[i] == '.') {
+  std::size_t points = 0;
+  std::size_t first_end = std::string::npos;  // end of the part before a second point
+  while (i < code.size() && (isDigit(code[i]) || code[i] == '.')) {
+    if (code[i] == '.' && ++points == 2) first_end = i;
+    if (isDigit(code[i])) ++digits;
     ++i;
-    while (i < code.size() && isDigit(code[i])) ++i, ++digits;
   }
-  if (digits == 0) failAt(start, "No digits found where real number should be");
+  const std::string_view span = std::string_view(code).substr(start, i - start);
+  if (digits == 0) {
+    failAt(start, "bad number format (conversion failed) parsing '" + std::string(span) + "'");
+  }
+  if (first_end != std::string::npos) {
+    failAt(start, "bad number format (trailing characters) parsing '" + std::string(span) + "'");
+  }
   double value = 0.0;
   const auto result = std::from_chars(code.data() + start, code.data() + i, value);
   if (result.ec != std::errc() || result.ptr != code.data() + i) {
-    failAt(start, "Bad number format");  // e.g. out of the range of a double
+    failAt(start, "bad number format (conversion failed) parsing '" + std::string(span) + "'");
   }
+  index_ = i;
+  return value;
+}
+
+double Cursor::readLineNumber() {
+  const std::string& code = text_.code;
+  const std::size_t start = index_;
+  std::size_t i = start;
+  while (i < code.size() && isDigit(code[i])) ++i;
+  if (i == start) failAt(start, "Bad format unsigned integer");
+  if (i < code.size() && code[i] == '.') {
+    const std::size_t fraction = ++i;
+    while (i < code.size() && isDigit(code[i])) ++i;
+    if (i == fraction) failAt(fraction, "Bad format unsigned integer");
+  }
+  double value = 0.0;
+  std::from_chars(code.data() + start, code.data() + i, value);
   index_ = i;
   return value;
 }
@@ -83,12 +108,14 @@ std::string_view Cursor::readComment() {
   return std::string_view(text_.code).substr(open + 1, close - open - 1);
 }
 
+// As LinuxCNC: printable characters quoted, others (and anything past 'z')
+// as a three-digit octal escape.
 std::string badCharacterMessage(char c) {
   const auto u = static_cast<unsigned char>(c);
-  if (u >= 0x20 && u < 0x7f) return std::string("Bad character '") + c + "' used";
-  char hex[8];
-  std::snprintf(hex, sizeof hex, "0x%02X", u);
-  return std::string("Bad character ") + hex + " used";
+  if (u > ' ' && u <= 'z') return std::string("Bad character '") + c + "' used";
+  char octal[8];
+  std::snprintf(octal, sizeof octal, "\\%03o", static_cast<unsigned>(u));
+  return std::string("Bad character '") + octal + "' used";
 }
 
 }  // namespace mdhd::gcode

@@ -58,8 +58,10 @@ class Cursor {
   [[noreturn]] void failAt(std::size_t index, const std::string& message) const;
 
   // An unsigned decimal number: digits with an optional point (`1.`, `.5`,
-  // `12.345`); the correctly rounded double.
+  // `12.345`); the correctly rounded double. Errors worded as LinuxCNC's.
   double readUnsignedNumber();
+  // The number of an N word: digits, optionally `.digits` (ignored by LinuxCNC).
+  double readLineNumber();
   // A comment starting at '(' : returns its text without the parentheses.
   std::string_view readComment();
 

@@ -3,8 +3,10 @@
 // uses it both to execute control flow and, cheaply, to skip lines while it
 // looks for the matching `endif` / `endwhile` / `endsub`.
 #include <cstddef>
+#include <string>
 #include <string_view>
 
+#include "sim/gcode/expression.h"
 #include "sim/gcode/lexer.h"
 
 namespace mdhd::gcode {
@@ -28,7 +30,7 @@ enum class OKeyword {
 };
 
 struct OWordHead {
-  std::string_view label;  // "100" (leading zeros dropped) or the name of o<name>
+  std::string label;  // "100" for o100 / o0100 / o[50*2], or the name of o<name>
   OKeyword keyword = OKeyword::kSub;
   std::size_t index = 0;  // cursor index of the 'o', for errors
 };
@@ -40,7 +42,8 @@ std::string_view keywordName(OKeyword keyword);
 bool startsWithOWord(Cursor& c);
 
 // Reads `o<label><keyword>` at the cursor (which is at the 'o'); the cursor
-// stops after the keyword. Throws GcodeError for a bad label or keyword.
-OWordHead readOWordHead(Cursor& c);
+// stops after the keyword. A numbered label may be any integer value, as in
+// LinuxCNC (`o#1`, `o[10*2]`). Throws GcodeError for a bad label or keyword.
+OWordHead readOWordHead(Cursor& c, ExpressionReader& expressions);
 
 }  // namespace mdhd::gcode

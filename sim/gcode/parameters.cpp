@@ -12,7 +12,9 @@ bool isGlobalName(std::string_view name) {
 
 }  // namespace
 
-ParameterStore::ParameterStore() : numbered_(kMaxNumber + 1, 0.0), frames_(1) {}
+ParameterStore::ParameterStore() : numbered_(kMaxNumber + 1, 0.0), frames_(1) {
+  numbered_[kDebugEnable] = 1.0;
+}
 
 double ParameterStore::get(int number) const {
   if (!validNumber(number)) throw std::out_of_range("parameter number out of range");

@@ -1,5 +1,5 @@
 #pragma once
-// The parameter table of RS274/NGC: numbered #1..#5602 (#1..#30 local to a
+// The parameter table of RS274/NGC: numbered #1..#5601 (#1..#30 local to a
 // subroutine call level), named #<name> (local to the call level) and
 // #<_name> (global), plus read-only predefined names the interpreter supplies
 // through a hook. Shared by the reader (expressions, assignments, calls) and
@@ -16,8 +16,9 @@ namespace mdhd::gcode {
 
 class ParameterStore {
  public:
-  static constexpr int kMaxNumber = 5602;
-  static constexpr int kLocalCount = 30;  // #1..#30 are per call level
+  static constexpr int kMaxNumber = 5601;    // LinuxCNC: RS274NGC_MAX_PARAMETERS 5602, exclusive
+  static constexpr int kDebugEnable = 5599;  // (DEBUG,...) messages shown while > 0; starts at 1
+  static constexpr int kLocalCount = 30;     // #1..#30 are per call level
   using PredefinedHook = std::function<std::optional<double>(std::string_view name)>;
 
   ParameterStore();

@@ -1,6 +1,7 @@
 #include "sim/gcode/reader.h"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <utility>
@@ -8,11 +9,11 @@
 namespace mdhd::gcode {
 namespace {
 
-// Letters that make words: A..Z without E, N and O (N and O are the
-// reader's), plus LinuxCNC's '$' (spindle select, e.g. `M3 $0 S1`).
+// Letters that make words: A..Z without N and O (those are the reader's),
+// plus LinuxCNC's '$' (spindle select, e.g. `M3 $0 S1`).
 constexpr std::array<bool, 256> makeWordLetters() {
   std::array<bool, 256> table{};
-  for (char c : std::string_view("abcdfghijklmpqrstuvwxyz$"))
+  for (char c : std::string_view("abcdefghijklmpqrstuvwxyz$"))
     table[static_cast<unsigned char>(c)] = true;
   return table;
 }
@@ -98,18 +99,24 @@ bool Reader::readLine(int source_index) {
   return true;
 }
 
-bool Reader::isClosingPercent() {
-  return frames_.back().source == 0 && percents_ > 0 && !text_.code.empty() &&
-         text_.code.front() == '%';
+// LinuxCNC: a program whose first line starts with '%' ends at a line that
+// is only '%'; nothing after it is read.
+bool Reader::isClosingPercent() const {
+  return percent_opened_ && frames_.back().source == 0 && text_.code == "%";
 }
 
 bool Reader::processLine(Block& out) {
   Cursor c(text_, ref_);
   if (c.atEnd()) return false;
   if (c.peek() == '%') {
-    // First '%' opens the program (tape mark), the next one ends it.
-    if (frames_.back().source == 0 && ++percents_ >= 2) ended_ = true;
-    return false;
+    if (ref_.line == 1 && frames_.back().source == 0 && line_start_ == 0) {
+      percent_opened_ = true;  // the opening tape mark (the rest of the line is ignored)
+      return false;
+    }
+    if (isClosingPercent()) {
+      ended_ = true;
+      return false;
+    }
   }
   if (c.peek() == '/') {
     if (options_.block_delete) return false;
@@ -120,7 +127,7 @@ bool Reader::processLine(Block& out) {
   if (c.peek() == 'n') {
     c.advance();
     out.has_n = true;
-    out.n = c.readUnsignedNumber();
+    out.n = c.readLineNumber();
   }
   if (c.peek() == 'o') {
     handleOWord(c);
@@ -153,11 +160,7 @@ void Reader::parseBlock(Cursor& c, Block& out) {
       out.comments.emplace_back(text);
     } else if (ch == '#') {
       readAssignment(c);
-    } else if (ch == 'n') {
-      c.fail("N word (line number) must come first on the line");
-    } else if (ch == 'o') {
-      c.fail("O-word must come first on the line");
-    } else {
+    } else {  // includes N and O words not at the start, as LinuxCNC
       c.fail(badCharacterMessage(ch));
     }
   }
@@ -199,69 +202,66 @@ void Reader::applyAssignments() {
   assignment_count_ = 0;
 }
 
+// LinuxCNC keeps only the last comment of a line as the block's comment, so
+// only that one can be a message; all of them stay in Block::comments.
 void Reader::handleComments(Block& out) {
-  for (std::size_t i = 0; i < out.comments.size(); ++i) {
-    const std::string_view text = out.comments[i];
-    const int column = comment_columns_[i];
-    if (startsWithNoCase(text, "msg,")) {
-      out.messages.emplace_back(text.substr(4));
-    } else if (startsWithNoCase(text, "debug,")) {
-      out.messages.push_back(substituteParameters(text.substr(6), column));
-    } else if (startsWithNoCase(text, "print,")) {
-      out.prints.push_back(substituteParameters(text.substr(6), column));
-    }
+  const std::string_view text = out.comments.back();
+  const int column = comment_columns_.back();
+  if (startsWithNoCase(text, "msg,")) {
+    out.messages.emplace_back(text.substr(4));
+  } else if (startsWithNoCase(text, "debug,")) {
+    std::string expanded = substituteParameters(text.substr(6), column);
+    if (params_.get(ParameterStore::kDebugEnable) > 0.0)
+      out.messages.push_back(std::move(expanded));
+  } else if (startsWithNoCase(text, "print,")) {
+    out.prints.push_back(substituteParameters(text.substr(6), column));
   }
 }
 
-// (DEBUG,...) / (PRINT,...): #<name> and #number are replaced by their value
-// printed as LinuxCNC does ("%lf").
+// (DEBUG,...) / (PRINT,...) as LinuxCNC expands them: #<name> and #number
+// become the value printed "%lf"; an unknown one becomes "######".
 std::string Reader::substituteParameters(std::string_view text, int column) {
+  const auto fail = [&] {
+    throw GcodeError({*ref_.file, ref_.line, column}, "Named parameter not terminated");
+  };
   std::string result;
-  char number[64];
   std::size_t i = 0;
   while (i < text.size()) {
-    const char c = text[i];
-    if (c != '#') {
-      result.push_back(c);
-      ++i;
+    if (text[i] != '#') {
+      result.push_back(text[i++]);
       continue;
     }
-    double value = 0.0;
-    std::size_t end = i + 1;
-    if (end < text.size() && text[end] == '<') {
-      const std::size_t close = text.find('>', end);
-      if (close == std::string_view::npos) {
-        result.append(text.substr(i));
-        break;
+    ++i;
+    if (i == text.size()) fail();
+    std::optional<double> value;
+    if (text[i] >= '0' && text[i] <= '9') {
+      long index = 0;
+      while (i < text.size() && text[i] >= '0' && text[i] <= '9') {
+        if (index <= ParameterStore::kMaxNumber) index = index * 10 + (text[i] - '0');
+        ++i;
       }
+      if (index == 0) value = 0.0;  // LinuxCNC's unused slot #0
+      if (ParameterStore::validNumber(static_cast<int>(index))) {
+        value = params_.get(static_cast<int>(index));
+      }
+    } else if (text[i] == '<') {
+      const std::size_t close = text.find('>', i);
+      if (close == std::string_view::npos) fail();
       std::string name;
-      for (char ch : text.substr(end + 1, close - end - 1)) {
+      for (char ch : text.substr(i + 1, close - i - 1)) {
         if (ch == ' ' || ch == '\t') continue;
         name.push_back((ch >= 'A' && ch <= 'Z') ? static_cast<char>(ch - 'A' + 'a') : ch);
       }
-      const auto found = params_.findNamed(name);
-      if (!found) {
-        throw GcodeError({*ref_.file, ref_.line, column},
-                         "Named parameter #<" + name + "> not defined");
-      }
-      value = *found;
-      end = close + 1;
+      value = params_.findNamed(name);
+      i = close + 1;
     } else {
-      int index = 0;
-      while (end < text.size() && text[end] >= '0' && text[end] <= '9' && index <= 99999) {
-        index = index * 10 + (text[end] - '0');
-        ++end;
-      }
-      if (end == i + 1 || !ParameterStore::validNumber(index)) {
-        result.push_back(c);
-        ++i;
-        continue;
-      }
-      value = params_.get(index);
+      result.push_back('#');
+      continue;
     }
-    std::snprintf(number, sizeof number, "%f", value);
-    result.append(number);
-    i = end;
+    char number[32];
+    const double v = (value && std::fabs(*value) < 0.0001) ? 0.0 : value.value_or(0.0);
+    const int n = std::snprintf(number, sizeof number, "%f", v);
+    result.append(value && n > 0 && n < 30 ? number : "######");
   }
   return result;
 }

@@ -28,7 +28,7 @@ namespace mdhd::gcode {
 struct ReaderOptions {
   bool block_delete = false;              // true: lines starting with '/' are skipped (switch ON)
   std::uint64_t max_steps = 100'000'000;  // physical lines read in total (loops count again)
-  int max_call_depth = 10;                // nested subroutine calls (LinuxCNC: 10)
+  int max_call_depth = 10;  // call levels incl. the program: 9 nested calls (LinuxCNC: 10)
   std::uint64_t max_loop_iterations = 10'000'000;  // per while / do / repeat loop
 };
 
@@ -96,7 +96,7 @@ class Reader {
   LineSource& source() { return *sources_[static_cast<std::size_t>(frames_.back().source)].lines; }
   bool readLine(int source_index);
   bool processLine(Block& out);
-  bool isClosingPercent();
+  bool isClosingPercent() const;
   void parseBlock(Cursor& c, Block& out);
   void readAssignment(Cursor& c);
   void applyAssignments();
@@ -111,15 +111,16 @@ class Reader {
   void defineSub(const OWordHead& head);
   void callSub(Cursor& c, const OWordHead& head);
   void returnFromSub(Cursor& c, const OWordHead& head);
-  const SubDef& findSub(std::string_view label, const Cursor& c);
-  bool scanForSub(int source_index, std::string_view label);
+  const SubDef& findSub(const std::string& label, const Cursor& c);
+  bool scanForSub(int source_index, const std::string& label);
+  std::string fileName(int source_index) const;
   void handleIf(Cursor& c, const OWordHead& head);
   void handleWhile(Cursor& c, const OWordHead& head);
   void handleLoopEnd(Cursor& c, const OWordHead& head);
   void handleBreakOrContinue(const OWordHead& head);
-  void skipIfBranch(const std::string& label, int line);
+  void skipIfBranches(const std::string& label, int line);
   OKeyword skipTo(const std::string& label, std::initializer_list<OKeyword> stops, int from_line,
-                  std::string_view what);
+                  std::string_view what, bool in_definition = false);
   Control& topControl(ControlKind kind, const OWordHead& head, const Cursor& c);
   void countIteration(Control& control);
   [[noreturn]] void failLine(int line, const std::string& message) const;
@@ -138,7 +139,7 @@ class Reader {
   LineRef ref_;
   std::uint64_t line_start_ = 0;
   std::uint64_t steps_ = 0;
-  int percents_ = 0;
+  bool percent_opened_ = false;
   bool ended_ = false;
 };
 

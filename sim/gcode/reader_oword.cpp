@@ -1,6 +1,7 @@
 // O-word control flow of the Reader: subroutines, if/elseif/else, while,
-// do-while, repeat, break and continue. Jumps are seeks to remembered byte
-// offsets; skipping reads forward to the matching O-word of the same label.
+// do-while, repeat, break and continue, with LinuxCNC's rules. Jumps are
+// seeks to remembered byte offsets; skipping reads forward to the matching
+// O-word of the same label.
 #include <cmath>
 
 #include "sim/gcode/reader.h"
@@ -15,7 +16,7 @@ std::string labelText(std::string_view label) {
 }  // namespace
 
 void Reader::handleOWord(Cursor& c) {
-  const OWordHead head = readOWordHead(c);
+  const OWordHead head = readOWordHead(c, expressions_);
   switch (head.keyword) {
     case OKeyword::kSub:
       readTrailingComments(c);
@@ -51,17 +52,17 @@ void Reader::handleOWord(Cursor& c) {
   }
 }
 
+// After an O-word command only comments may follow (LinuxCNC).
 void Reader::readTrailingComments(Cursor& c) {
   while (!c.atEnd()) {
-    if (c.peek() != '(') c.fail("Unexpected text after O-word command");
+    if (c.peek() != '(') c.fail("Unexpected character after O-word");
     c.readComment();
   }
 }
 
 double Reader::readCondition(Cursor& c, const OWordHead& head) {
   if (c.peek() != '[') {
-    c.fail("Expression in [ ] expected after " + labelText(head.label) + " " +
-           std::string(keywordName(head.keyword)));
+    c.fail("Left bracket missing after '" + std::string(keywordName(head.keyword)) + "'");
   }
   const double value = expressions_.readExpression(c);
   readTrailingComments(c);
@@ -71,35 +72,52 @@ double Reader::readCondition(Cursor& c, const OWordHead& head) {
 // A definition is skipped, not run: remember where the body starts.
 void Reader::defineSub(const OWordHead& head) {
   const int line = ref_.line;
-  const std::string label(head.label);
-  subs_[label] = SubDef{frames_.back().source, source().tell(), line};
-  skipTo(label, {OKeyword::kEndSub}, line, "sub");
-}
-
-const Reader::SubDef& Reader::findSub(std::string_view label, const Cursor& c) {
-  if (const auto it = subs_.find(label); it != subs_.end()) return it->second;
-  // Defined later in this file? Look ahead, then come back.
-  const int here = frames_.back().source;
-  const std::string name(label);
-  const int line = ref_.line;
-  if (scanForSub(here, name)) return subs_.find(name)->second;
-  if (loader_) {
-    if (std::unique_ptr<LineSource> lines = loader_(name)) {
-      sources_.push_back(Source{std::move(lines), name + ".ngc"});
-      const int index = static_cast<int>(sources_.size()) - 1;
-      if (scanForSub(index, name)) return subs_.find(name)->second;
-      ref_.file = &sources_[static_cast<std::size_t>(here)].file;
-      ref_.line = line;
-      c.failAt(0, "File " + name + ".ngc does not define o<" + name + "> sub");
+  const SubDef def{frames_.back().source, source().tell(), line};
+  if (const auto it = subs_.find(head.label); it != subs_.end()) {
+    const SubDef& old = it->second;
+    // Found before by looking ahead for a call: then it is this same definition.
+    if (old.source != def.source || old.body != def.body) {
+      failLine(line, "Redefining subroutine " + labelText(head.label) + ", already defined in " +
+                         fileName(old.source) + " line " + std::to_string(old.line));
     }
   }
-  ref_.file = &sources_[static_cast<std::size_t>(here)].file;
-  ref_.line = line;
-  c.failAt(0, "Unknown subroutine o<" + name + ">: not defined in the program and no " + name +
-                  ".ngc found");
+  subs_[head.label] = def;
+  skipTo(head.label, {OKeyword::kEndSub}, line, "sub", true);
 }
 
-bool Reader::scanForSub(int source_index, std::string_view label) {
+std::string Reader::fileName(int source_index) const {
+  const std::string& file = sources_[static_cast<std::size_t>(source_index)].file;
+  return file.empty() ? std::string("the program") : file;
+}
+
+// As LinuxCNC: a sub not yet defined is looked for in <name>.ngc first, then
+// further on in the current file.
+const Reader::SubDef& Reader::findSub(const std::string& label, const Cursor& c) {
+  if (const auto it = subs_.find(label); it != subs_.end()) return it->second;
+  const int here = frames_.back().source;
+  const int line = ref_.line;
+  const auto restorePosition = [&] {
+    ref_.file = &sources_[static_cast<std::size_t>(here)].file;
+    ref_.line = line;
+  };
+  if (loader_) {
+    if (std::unique_ptr<LineSource> lines = loader_(label)) {
+      sources_.push_back(Source{std::move(lines), label + ".ngc"});
+      const int index = static_cast<int>(sources_.size()) - 1;
+      if (scanForSub(index, label)) return subs_.find(label)->second;
+      restorePosition();
+      c.failAt(0, "File " + label + ".ngc does not define " + labelText(label) + " sub");
+    }
+  }
+  if (scanForSub(here, label)) return subs_.find(label)->second;
+  restorePosition();
+  c.failAt(0, "Unknown subroutine " + labelText(label) + ": not defined in the program and no " +
+                  label + ".ngc found");
+}
+
+// Looks ahead in a source for `o<label> sub` and records it; the source's
+// position is restored.
+bool Reader::scanForSub(int source_index, const std::string& label) {
   LineSource& lines = *sources_[static_cast<std::size_t>(source_index)].lines;
   const std::uint64_t back = lines.tell();
   const int back_line = lines.lineNumber();
@@ -109,9 +127,9 @@ bool Reader::scanForSub(int source_index, std::string_view label) {
     if (source_index == 0 && isClosingPercent()) break;
     Cursor c(text_, ref_);
     if (!startsWithOWord(c)) continue;
-    const OWordHead head = readOWordHead(c);
+    const OWordHead head = readOWordHead(c, expressions_);
     if (head.keyword == OKeyword::kSub && head.label == label) {
-      subs_[std::string(label)] = SubDef{source_index, lines.tell(), lines.lineNumber()};
+      subs_[head.label] = SubDef{source_index, lines.tell(), lines.lineNumber()};
       found = true;
       break;
     }
@@ -125,25 +143,29 @@ bool Reader::scanForSub(int source_index, std::string_view label) {
 void Reader::callSub(Cursor& c, const OWordHead& head) {
   std::array<double, ParameterStore::kLocalCount> args{};
   int count = 0;
-  while (c.peek() == '[') {
+  while (c.peek() == '[' || c.peek() == '(') {  // comments may stand between arguments
+    if (c.peek() == '(') {
+      c.readComment();
+      continue;
+    }
     if (count == ParameterStore::kLocalCount)
       c.fail("Too many subroutine arguments (more than 30)");
     args[static_cast<std::size_t>(count++)] = expressions_.readExpression(c);
   }
   readTrailingComments(c);
-  const int depth = static_cast<int>(frames_.size());  // the new call's level
-  if (depth > options_.max_call_depth) {
-    c.failAt(head.index, "Too many nested subroutine calls (more than " +
-                             std::to_string(options_.max_call_depth) + ")");
+  // LinuxCNC: call levels 0 (the program) to max_call_depth - 1.
+  const int level = static_cast<int>(frames_.size());
+  if (level >= options_.max_call_depth) {
+    c.failAt(head.index, "Too many nested subroutine calls (limit " +
+                             std::to_string(options_.max_call_depth) + " levels)");
   }
-  const std::string label(head.label);
   LineSource& caller = source();
   const std::uint64_t return_offset = caller.tell();
   const int return_line = caller.lineNumber();
-  const SubDef def = findSub(label, c);
+  const SubDef def = findSub(head.label, c);
   Frame& frame = frames_.emplace_back();
   frame.source = def.source;
-  frame.name = label;
+  frame.name = head.label;
   frame.return_offset = return_offset;
   frame.return_line = return_line;
   params_.enterCall(args.data(), count);
@@ -156,12 +178,12 @@ void Reader::returnFromSub(Cursor& c, const OWordHead& head) {
   std::optional<double> value;
   if (c.peek() == '[') value = expressions_.readExpression(c);
   readTrailingComments(c);
-  const std::string_view what = keywordName(head.keyword);
+  const std::string what(keywordName(head.keyword));
   if (frames_.size() <= 1) {
-    c.failAt(head.index, labelText(head.label) + " " + std::string(what) + " outside a subroutine");
+    c.failAt(head.index, labelText(head.label) + " " + what + " outside a subroutine");
   }
   if (frames_.back().name != head.label) {
-    c.failAt(head.index, labelText(head.label) + " " + std::string(what) + " inside subroutine " +
+    c.failAt(head.index, labelText(head.label) + " " + what + " inside subroutine " +
                              labelText(frames_.back().name));
   }
   params_.setReturnValue(value);
@@ -185,41 +207,27 @@ Reader::Control& Reader::topControl(ControlKind kind, const OWordHead& head, con
 
 void Reader::handleIf(Cursor& c, const OWordHead& head) {
   std::vector<Control>& controls = frames_.back().controls;
-  const std::string label(head.label);
   switch (head.keyword) {
     case OKeyword::kIf: {
       const bool condition = readCondition(c, head) != 0.0;
       Control& control = controls.emplace_back();
       control.kind = ControlKind::kIf;
-      control.label = label;
+      control.label = head.label;
       control.line = ref_.line;
-      control.taken = condition;
-      if (!condition) skipIfBranch(label, control.line);
-      return;
-    }
-    case OKeyword::kElseIf: {
-      Control& control = topControl(ControlKind::kIf, head, c);
-      if (control.taken) {
-        skipTo(label, {OKeyword::kEndIf}, control.line, "if");
-        frames_.back().controls.pop_back();
-        return;
-      }
-      if (readCondition(c, head) != 0.0) {
+      if (condition) {
         control.taken = true;
       } else {
-        skipIfBranch(label, control.line);
+        skipIfBranches(head.label, control.line);
       }
       return;
     }
+    case OKeyword::kElseIf:
     case OKeyword::kElse: {
-      readTrailingComments(c);
-      Control& control = topControl(ControlKind::kIf, head, c);
-      if (control.taken) {
-        skipTo(label, {OKeyword::kEndIf}, control.line, "if");
-        frames_.back().controls.pop_back();
-        return;
-      }
-      control.taken = true;
+      // Reached while running a branch: the if is done.
+      if (head.keyword == OKeyword::kElse) readTrailingComments(c);
+      const int line = topControl(ControlKind::kIf, head, c).line;
+      skipTo(head.label, {OKeyword::kEndIf}, line, "if");
+      frames_.back().controls.pop_back();
       return;
     }
     default:  // endif
@@ -230,40 +238,55 @@ void Reader::handleIf(Cursor& c, const OWordHead& head) {
   }
 }
 
-// Skips a branch not taken: to the next elseif / else (which is then
-// handled as usual) or to the endif (which closes the if).
-void Reader::skipIfBranch(const std::string& label, int line) {
-  const OKeyword stop =
-      skipTo(label, {OKeyword::kElseIf, OKeyword::kElse, OKeyword::kEndIf}, line, "if");
-  Cursor c(text_, ref_);
-  startsWithOWord(c);
-  handleOWord(c);
-  (void)stop;
+// Skips branches not taken until an elseif whose condition holds, an else,
+// or the endif (which closes the if). A loop, not recursion: a chain of
+// elseif lines can be long.
+void Reader::skipIfBranches(const std::string& label, int line) {
+  for (;;) {
+    const OKeyword stop =
+        skipTo(label, {OKeyword::kElseIf, OKeyword::kElse, OKeyword::kEndIf}, line, "if");
+    Cursor c(text_, ref_);
+    startsWithOWord(c);
+    const OWordHead head = readOWordHead(c, expressions_);
+    if (stop == OKeyword::kEndIf) {
+      readTrailingComments(c);
+      frames_.back().controls.pop_back();
+      return;
+    }
+    if (stop == OKeyword::kElse) {
+      readTrailingComments(c);
+      frames_.back().controls.back().taken = true;
+      return;
+    }
+    if (readCondition(c, head) != 0.0) {
+      frames_.back().controls.back().taken = true;
+      return;
+    }
+  }
 }
 
 void Reader::handleWhile(Cursor& c, const OWordHead& head) {
   std::vector<Control>& controls = frames_.back().controls;
-  const std::string label(head.label);
-  const bool top_matches = !controls.empty() && controls.back().label == label;
+  const bool top_matches = !controls.empty() && controls.back().label == head.label;
   if (head.keyword == OKeyword::kDo) {
     readTrailingComments(c);
     Control& control = controls.emplace_back();
     control.kind = ControlKind::kDo;
-    control.label = label;
+    control.label = head.label;
     control.offset = source().tell();
     control.line = ref_.line;
     return;
   }
   if (head.keyword == OKeyword::kRepeat) {
-    const double count = readCondition(c, head);
+    const double count = std::nearbyint(readCondition(c, head));  // LinuxCNC rounds the count
     const int line = ref_.line;
-    if (!(count >= 1.0)) {  // also NaN
-      skipTo(label, {OKeyword::kEndRepeat}, line, "repeat");
+    if (!(count >= 1.0)) {
+      skipTo(head.label, {OKeyword::kEndRepeat}, line, "repeat");
       return;
     }
     Control& control = controls.emplace_back();
     control.kind = ControlKind::kRepeat;
-    control.label = label;
+    control.label = head.label;
     control.offset = source().tell();
     control.line = line;
     control.remaining = count >= 1e18 ? ~std::uint64_t{0} : static_cast<std::uint64_t>(count);
@@ -288,7 +311,7 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
     if (!again) {
       Control& control = controls.emplace_back();
       control.kind = ControlKind::kWhile;
-      control.label = label;
+      control.label = head.label;
       control.offset = line_start_;
       control.line = ref_.line;
     }
@@ -296,7 +319,7 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
   }
   const int line = ref_.line;
   if (again) controls.pop_back();
-  skipTo(label, {OKeyword::kEndWhile}, line, "while");
+  skipTo(head.label, {OKeyword::kEndWhile}, line, "while");
 }
 
 void Reader::handleLoopEnd(Cursor& c, const OWordHead& head) {
@@ -326,50 +349,55 @@ void Reader::countIteration(Control& control) {
   }
 }
 
+// LinuxCNC allows break and continue for while and do loops only.
 void Reader::handleBreakOrContinue(const OWordHead& head) {
   std::vector<Control>& controls = frames_.back().controls;
-  const std::string label(head.label);
+  const auto isLoop = [&](const Control& control) {
+    return control.label == head.label &&
+           (control.kind == ControlKind::kWhile || control.kind == ControlKind::kDo);
+  };
   std::size_t i = controls.size();
-  while (i > 0 && !(controls[i - 1].label == label && controls[i - 1].kind != ControlKind::kIf))
-    --i;
+  while (i > 0 && !isLoop(controls[i - 1])) --i;
   if (i == 0) {
-    failLine(ref_.line, labelText(label) + " " + std::string(keywordName(head.keyword)) +
-                            " outside a loop " + labelText(label));
+    failLine(ref_.line, labelText(head.label) + " " + std::string(keywordName(head.keyword)) +
+                            ": no matching while/do label");
   }
   controls.resize(i);  // leave any if inside the loop
   const Control loop = controls.back();
-  const OKeyword end = loop.kind == ControlKind::kWhile ? OKeyword::kEndWhile
-                       : loop.kind == ControlKind::kDo  ? OKeyword::kWhile
-                                                        : OKeyword::kEndRepeat;
-  const std::string_view what = loop.kind == ControlKind::kWhile ? "while"
-                                : loop.kind == ControlKind::kDo  ? "do"
-                                                                 : "repeat";
+  const bool is_while = loop.kind == ControlKind::kWhile;
+  const OKeyword end = is_while ? OKeyword::kEndWhile : OKeyword::kWhile;
+  const std::string_view what = is_while ? "while" : "do";
   if (head.keyword == OKeyword::kBreak) {
     controls.pop_back();
-    skipTo(label, {end}, loop.line, what);
+    skipTo(head.label, {end}, loop.line, what);
     return;
   }
-  if (loop.kind == ControlKind::kWhile) {  // continue: test the condition again
+  if (is_while) {  // continue: test the condition again
     countIteration(controls.back());
     source().seek(loop.offset);
     source().setLineNumber(loop.line - 1);
     return;
   }
-  // do / repeat: go to the loop's end and let it decide.
-  skipTo(label, {end}, loop.line, what);
+  // continue in a do loop: go to its closing while and let the condition decide.
+  skipTo(head.label, {end}, loop.line, what);
   Cursor c(text_, ref_);
   startsWithOWord(c);
   handleOWord(c);
 }
 
 OKeyword Reader::skipTo(const std::string& label, std::initializer_list<OKeyword> stops,
-                        int from_line, std::string_view what) {
+                        int from_line, std::string_view what, bool in_definition) {
   const int source_index = frames_.back().source;
   while (readLine(source_index)) {
     if (isClosingPercent()) break;
     Cursor c(text_, ref_);
     if (!startsWithOWord(c)) continue;
-    const OWordHead head = readOWordHead(c);
+    const std::size_t at = c.index();
+    const OWordHead head = readOWordHead(c, expressions_);
+    if (in_definition && head.keyword == OKeyword::kSub) {
+      c.failAt(at, "Nested subroutine definition: " + labelText(head.label) + " sub inside " +
+                       labelText(label) + " sub");
+    }
     if (head.label != label) continue;
     for (OKeyword stop : stops) {
       if (head.keyword == stop) return stop;

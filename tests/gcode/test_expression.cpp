@@ -42,6 +42,9 @@ TEST(Expression, ComparisonsAndLogic) {
   EXPECT_EQ(x("[1 LT 2]"), 1.0);
   EXPECT_EQ(x("[2 LT 2]"), 0.0);
   EXPECT_EQ(x("[2 LE 2]"), 1.0);
+  EXPECT_EQ(x("[2.00005 LE 2]"), 1.0);  // LE / GE also within 0.0001, as LinuxCNC
+  EXPECT_EQ(x("[2 GE 2.00005]"), 1.0);
+  EXPECT_EQ(x("[2.001 LE 2]"), 0.0);
   EXPECT_EQ(x("[3 GT 2]"), 1.0);
   EXPECT_EQ(x("[2 GE 3]"), 0.0);
   EXPECT_EQ(x("[2 EQ 2.00001]"), 1.0);  // LinuxCNC compares EQ/NE within 0.0001
@@ -69,7 +72,11 @@ TEST(Expression, Functions) {
   EXPECT_EQ(x("[ROUND[2.5]]"), 3.0);
   EXPECT_EQ(x("[ROUND[-2.5]]"), -3.0);  // half away from zero
   EXPECT_EQ(x("[ROUND[-2.4]]"), -2.0);
-  EXPECT_NEAR(x("[SIN[30]]"), 0.5, 1e-15);
+  EXPECT_EQ(x("[ROUND[0.49999999999999994]]"), 1.0);     // LinuxCNC adds 0.5, then truncates
+  EXPECT_EQ(x("[ROUND[1000000000000.5]]"), 1e12 + 1.0);  // beyond int: no overflow
+  EXPECT_EQ(x("[SIN[30]]"), 0.5);                        // in long double as LinuxCNC: exactly 0.5
+  constexpr long double kPi = 3.141592653589793238462643383279502884L;
+  EXPECT_EQ(x("[COS[90]]"), static_cast<double>(std::cos((90.0L * kPi) / 180.0L)));
   EXPECT_NEAR(x("[COS[60]]"), 0.5, 1e-15);
   EXPECT_NEAR(x("[TAN[45]]"), 1.0, 1e-15);
   EXPECT_NEAR(x("[ASIN[0.5]]"), 30.0, 1e-13);
@@ -96,7 +103,7 @@ struct ErrorCase {
 TEST(Expression, ErrorsNameWhatAndWhere) {
   const ErrorCase cases[] = {
       {"G1 X[1/0]", "Attempt to divide by zero", 7},
-      {"G1 X[1 MOD 0]", "Attempt to divide by zero", 8},
+      {"G1 X[1 MOD 0]", "Calculation resulted in 'not a number'", 5},
       {"G1 X[SQRT[-1]]", "Negative argument to SQRT", 6},
       {"G1 X[LN[0]]", "Zero or negative argument to LN", 6},
       {"G1 X[ACOS[2]]", "Argument to ACOS out of range", 6},
@@ -108,14 +115,18 @@ TEST(Expression, ErrorsNameWhatAndWhere) {
       {"G1 X[ATAN[1]/2]", "Left bracket missing after slash with ATAN", 14},
       {"G1 X[1 FOO 2]", "Unknown operation name starting with F", 8},
       {"G1 X[1 ! 2]", "Unknown operation '!' in expression", 8},
-      {"G1 X[SIN 30]", "Left bracket missing after function name sin", 10},
-      {"G1 X[10**400]", "Calculation result is not a finite number", 8},
+      {"G1 X[SIN 30]", "Left bracket missing after unary operation name", 10},
+      {"G1 Xy1", "Unknown word where unary operation could be", 5},
+      {"G1 X[10**400]", "Calculation resulted in 'infinity'", 5},
+      {"G1 X[EXP[1000]]", "Calculation resulted in 'infinity'", 6},
+      {"G1 X1.2.3", "bad number format (trailing characters) parsing '1.2.3'", 5},
       {"G1 X#<nope>", "Named parameter #<nope> not defined", 5},
       {"G1 X#0", "Parameter number out of range", 6},
-      {"G1 X#5603", "Parameter number out of range", 6},
+      {"G1 X#5602", "Parameter number out of range", 6},  // LinuxCNC: #1..#5601
       {"G1 X#1.5", "Non-integer value for integer", 6},
-      {"G1 X", "No digits found where real number should be", 5},
-      {"G1 X[]", "No digits found where real number should be", 6},
+      {"G1 X", "No characters found in reading real value", 5},
+      {"G1 X[]", "bad number format (conversion failed) parsing ''", 6},
+      {"G1 X.", "bad number format (conversion failed) parsing '.'", 5},
   };
   for (const ErrorCase& c : cases) {
     const GcodeError e = readError(std::string("\n") + c.program + "\n");

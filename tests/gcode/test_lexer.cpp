@@ -80,8 +80,17 @@ TEST(Lexer, MissingDigitsIsAnError) {
     number(".x");
     FAIL();
   } catch (const GcodeError& e) {
-    EXPECT_STREQ(e.what(), "No digits found where real number should be");
+    EXPECT_STREQ(e.what(), "bad number format (conversion failed) parsing '.'");
     EXPECT_EQ(e.column(), 1);
+  }
+}
+
+TEST(Lexer, NumberFormatErrorsAsLinuxCnc) {
+  try {
+    number("1.2.3");
+    FAIL();
+  } catch (const GcodeError& e) {
+    EXPECT_STREQ(e.what(), "bad number format (trailing characters) parsing '1.2.3'");
   }
 }
 
@@ -96,7 +105,8 @@ TEST(Lexer, CommentTextIsVerbatim) {
 
 TEST(Lexer, BadCharacterMessages) {
   EXPECT_EQ(badCharacterMessage('u'), "Bad character 'u' used");
-  EXPECT_EQ(badCharacterMessage('\x01'), "Bad character 0x01 used");
+  EXPECT_EQ(badCharacterMessage('\x01'), "Bad character '\\001' used");
+  EXPECT_EQ(badCharacterMessage('{'), "Bad character '\\173' used");
 }
 
 }  // namespace

@@ -10,11 +10,12 @@ namespace {
 TEST(Parameters, NumberedStartAtZeroAndKeepValues) {
   ParameterStore p;
   EXPECT_EQ(p.get(1), 0.0);
-  EXPECT_EQ(p.get(5602), 0.0);
+  EXPECT_EQ(p.get(5601), 0.0);
+  EXPECT_EQ(p.get(ParameterStore::kDebugEnable), 1.0);  // LinuxCNC's default: DEBUG shown
   p.set(5221, 12.5);
   EXPECT_EQ(p.get(5221), 12.5);
   EXPECT_THROW(p.get(0), std::out_of_range);
-  EXPECT_THROW(p.set(5603, 1.0), std::out_of_range);
+  EXPECT_THROW(p.set(5602, 1.0), std::out_of_range);
   EXPECT_TRUE(ParameterStore::validNumber(1));
   EXPECT_FALSE(ParameterStore::validNumber(0));
 }

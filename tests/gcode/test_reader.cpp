@@ -48,10 +48,10 @@ TEST(Reader, OddSpacingAndCase) {
 
 TEST(Reader, AllWordLettersAndDollar) {
   const auto blocks = readAll(
-      "A1 B2 C3 D4 F5 G6 H7 I8 J9 K10 L11 M12 P13 Q14 R15 S16 T17 U18 V19 W20 "
+      "A1 B2 C3 D4 E4.5 F5 G6 H7 I8 J9 K10 L11 M12 P13 Q14 R15 S16 T17 U18 V19 W20 "
       "X21 Y22 Z23 $0\n");
   ASSERT_EQ(blocks.size(), 1u);
-  const std::string letters = "ABCDFGHIJKLMPQRSTUVWXYZ$";
+  const std::string letters = "ABCDEFGHIJKLMPQRSTUVWXYZ$";
   ASSERT_EQ(blocks[0].words.size(), letters.size());
   for (std::size_t i = 0; i < letters.size(); ++i) {
     EXPECT_EQ(blocks[0].words[i].letter, letters[i]);
@@ -78,9 +78,11 @@ TEST(Reader, CommentsAndMessages) {
       "( msg, spaced)\n"
       "#1 = 2.5 #<depth> = -3 (DEBUG, one=#1 depth=#<Depth> #99999 # x)\n"
       "(PRINT,#1)\n"
-      "(debugging is not debug,)\n",
+      "(debugging is not debug,)\n"
+      "(MSG, not this) G0 (MSG, this)\n"
+      "#5599 = 0 (DEBUG, switched off)\n",
       params);
-  ASSERT_EQ(blocks.size(), 6u);
+  ASSERT_EQ(blocks.size(), 8u);
   EXPECT_EQ(blocks[0].comments, (std::vector<std::string>{"first", "second"}));
   EXPECT_EQ(blocks[0].words.size(), 2u);
   EXPECT_TRUE(blocks[0].messages.empty());
@@ -88,17 +90,27 @@ TEST(Reader, CommentsAndMessages) {
   EXPECT_EQ(blocks[2].messages, std::vector<std::string>{" spaced"});
   // DEBUG sees the line's own assignments (LinuxCNC sets them before executing).
   EXPECT_EQ(blocks[3].messages,
-            std::vector<std::string>{" one=2.500000 depth=-3.000000 #99999 # x"});
+            std::vector<std::string>{" one=2.500000 depth=-3.000000 ###### # x"});
   EXPECT_EQ(blocks[4].prints, std::vector<std::string>{"2.500000"});
   EXPECT_TRUE(blocks[4].messages.empty());
   EXPECT_TRUE(blocks[5].messages.empty());
+  // LinuxCNC keeps only the last comment of a line: only it can be a message.
+  EXPECT_EQ(blocks[6].messages, std::vector<std::string>{" this"});
+  EXPECT_EQ(blocks[6].comments.size(), 2u);
+  EXPECT_TRUE(blocks[7].messages.empty());  // #5599 = 0 turns DEBUG off
 }
 
-TEST(Reader, DebugWithUndefinedParameterIsAnError) {
-  const GcodeError e = readError("G0\n  (DEBUG, #<missing>)\n");
-  EXPECT_STREQ(e.what(), "Named parameter #<missing> not defined");
-  EXPECT_EQ(e.line(), 2);
-  EXPECT_EQ(e.column(), 3);
+TEST(Reader, DebugParameterSubstitution) {
+  const auto blocks = readAll("#3 = -0.00001 (DEBUG, #<missing> #3 #0 #<_value>)\n");
+  ASSERT_EQ(blocks.size(), 1u);
+  // Unknown names print as LinuxCNC's "######"; near-zero as 0.
+  EXPECT_EQ(blocks[0].messages, std::vector<std::string>{" ###### 0.000000 0.000000 0.000000"});
+  for (const char* bad : {"G0\n  (DEBUG, #<open)\n", "G0\n  (DEBUG, at end #)\n"}) {
+    const GcodeError e = readError(bad);
+    EXPECT_STREQ(e.what(), "Named parameter not terminated") << bad;
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.column(), 3);
+  }
 }
 
 TEST(Reader, AssignmentsTakeEffectAfterTheLine) {
@@ -162,6 +174,9 @@ TEST(Reader, TheInterpreterSeesAssignmentsInTheStore) {
 TEST(Reader, PercentMarksTheProgramsEnds) {
   const auto blocks = readAll("%\nG0 X1\n%\nG0 X2\n");
   EXPECT_EQ(values(blocks, 'X'), std::vector<double>{1.0});
+  const auto spaced = readAll(" % tape\nG0 X1\n  %  \nG0 X2\n");
+  EXPECT_EQ(values(spaced, 'X'), std::vector<double>{1.0});
+  EXPECT_STREQ(readError("%\nG0 X1\n%5\n").what(), "Bad character '%' used");
   const auto no_marks = readAll("G0 X1\nG0 X2\n");
   EXPECT_EQ(values(no_marks, 'X'), (std::vector<double>{1.0, 2.0}));
 }
@@ -188,15 +203,17 @@ TEST(Reader, ErrorsNameLineAndColumn) {
     int line;
     int column;
   } cases[] = {
-      {"G0\nG1 E5\n", "Bad character 'e' used", 2, 4},
+      {"G0\nG1 {5\n", "Bad character '\\173' used", 2, 4},
       {"G0\nG1 X1 * 2\n", "Bad character '*' used", 2, 7},
-      {"G1 X1 N5\n", "N word (line number) must come first on the line", 1, 7},
-      {"G1 o100 call\n", "O-word must come first on the line", 1, 4},
+      {"G1 X1 N5\n", "Bad character 'n' used", 1, 7},
+      {"G1 o100 call\n", "Bad character 'o' used", 1, 4},
+      {"G0\n%\n", "Bad character '%' used", 2, 1},  // '%' opens only on line 1
+      {"N\n", "Bad format unsigned integer", 1, 2},
       {"\n\n  G0 (a (b))\n", "Nested comment found", 3, 9},
       {"G0 (open\n", "Unclosed comment found", 1, 4},
       {"#1 X5\n", "Equal sign missing in parameter setting", 1, 4},
-      {"#<a = 5\n", "Named parameter not terminated by '>'", 1, 2},
-      {"G0 X@\n", "No digits found where real number should be", 1, 5},
+      {"#<a = 5\n", "Named parameter not terminated", 1, 2},
+      {"G0 X@\n", "bad number format (conversion failed) parsing ''", 1, 5},
   };
   for (const Case& c : cases) {
     const GcodeError e = readError(c.program);
