@@ -36,7 +36,7 @@ struct InterpState {
   int tool_length_mode = 490;  // 430, 431, 434 or 490
   int coord_system = 0;        // 0..8: G54 .. G59.3
   int path_mode = 640;
-  bool retract_to_r = false;  // G99
+  bool retract_to_r = true;  // G99; LinuxCNC starts in R_PLANE (its setup constructor)
   // Values.
   double feed = 0.0;       // mm/min (G94) or mm/rev (G95)
   double feed_word = 0.0;  // F as written (program units), for pure rotary moves

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 
@@ -15,6 +16,9 @@ namespace mdhd::gcode::testing {
 namespace {
 
 const std::string kData = std::string(MDHD_SOURCE_DIR) + "/tests/data/gcode-oracle/";
+
+// MDHD_ORACLE_VERBOSE=1: print every differing motion, not only the first.
+const bool kVerbose = std::getenv("MDHD_ORACLE_VERBOSE") != nullptr;
 
 struct Case {
   std::string name;  // e.g. programs/09_cutter_comp
@@ -155,7 +159,11 @@ TEST_P(OracleConformance, MatchesRs274Trace) {
     const std::string diff = compare(want[i], run.motions[i], lin_tol);
     if (diff.empty()) {
       ++agreeing;
-    } else if (first_difference.empty()) {
+    } else if (kVerbose) {
+      std::printf("[oracle] %s motion %zu line %d: %s\n", c.name.c_str(), i, run.motions[i].line,
+                  diff.c_str());
+    }
+    if (!diff.empty() && first_difference.empty()) {
       first_difference = "motion " + std::to_string(i) + " (trace line " +
                          (want[i]["line"].is_null() ? std::string("?") : want[i]["line"].dump()) +
                          "): " + diff;
