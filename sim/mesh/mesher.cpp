@@ -38,7 +38,7 @@ class Mesher {
   void square(const GridPoint& cubeMin, int face);
   void partialLeaf(const LeafInfo& l);
   void uniformLeaf(const LeafInfo& l);
-  double edgeT(const GridPoint& p, int axis);
+  double edgeT(const GridPoint& p, int axis, bool startSolid);
   LoopPoint crossingPoint(const GridPoint& p, int axis, double t) const;
   void emit(std::span<const LoopPoint> loop, bool exterior);
   MeshVertex vertex(const LoopPoint& p) const {
@@ -55,12 +55,14 @@ class Mesher {
   std::vector<std::uint8_t> masks_;
 };
 
-double Mesher::edgeT(const GridPoint& p, int axis) {
+double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid) {
   const double x = view_.crossing(p, axis, hint_);
   double t = x - p[axis];
   if (!std::isfinite(t)) {
+    // The edge's owner sees no surface here, the end's owner does: in practice a
+    // solid interval ending right on the shared vertex, so the crossing goes there.
     ++stats_.fallbackCrossings;
-    t = 0.5;
+    t = startSolid ? 0.0 : 1.0;
   }
   return std::clamp(t, kCrossingMargin, 1.0 - kCrossingMargin);
 }
@@ -111,7 +113,7 @@ void Mesher::cube(const GridPoint& c) {
   double t[12];
   for (int e = 0; e < 12; ++e) {
     const bool s0 = (solid >> edges[e].from) & 1u, s1 = (solid >> edges[e].to) & 1u;
-    t[e] = s0 != s1 ? edgeT(cornerOf(c, edges[e].from), edges[e].axis) : 0.5;
+    t[e] = s0 != s1 ? edgeT(cornerOf(c, edges[e].from), edges[e].axis, s0) : 0.5;
   }
   const CubeLoops loops = cubeLoops(solid, t);
   ++stats_.surfaceCubes;
@@ -152,7 +154,7 @@ void Mesher::square(const GridPoint& cubeMin, int faceId) {
     }
     itemOfEdge[e] = 2 * i + 1;
     if (s0 != s1) {
-      t[e] = edgeT(cornerOf(cubeMin, edges[e].from), edges[e].axis);
+      t[e] = edgeT(cornerOf(cubeMin, edges[e].from), edges[e].axis, (solid >> edges[e].from) & 1u);
       items[2 * i + 1] = crossingPoint(cornerOf(cubeMin, edges[e].from), edges[e].axis, t[e]);
       present[2 * i + 1] = true;
       isExit[2 * i + 1] = s0;
