@@ -1,6 +1,7 @@
 #include "sim/geometry/pose_interpolation.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -16,9 +17,11 @@ bool finite(const glm::dvec3& v) {
 ToolPose normalizedPose(const ToolPose& pose) {
   if (!finite(pose.tip) || !finite(pose.axis))
     throw std::invalid_argument("tool pose: tip and axis must be finite");
-  const double len = glm::length(pose.axis);
-  if (!(len > 1e-12)) throw std::invalid_argument("tool pose: axis must not be zero");
-  return ToolPose{pose.tip, pose.axis / len};
+  const double len2 = glm::dot(pose.axis, pose.axis);
+  if (!(len2 > 1e-24)) throw std::invalid_argument("tool pose: axis must not be zero");
+  // A unit axis stays as given, so the same pose always gives the same solid.
+  if (std::abs(len2 - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon()) return pose;
+  return ToolPose{pose.tip, pose.axis / std::sqrt(len2)};
 }
 
 double axisAngle(const glm::dvec3& a, const glm::dvec3& b) {

@@ -56,6 +56,18 @@ void checkTolerance(double tolerance) {
 
 }  // namespace
 
+namespace {
+
+// The bound of SweptVolume::between with n segments turning th in all: a point at
+// `reach` from the pivot turns by at most th / 2n away from its pose's axis, and the
+// pivot (at `height` on the axis) runs on a chord of its arc, off by the sagitta.
+double betweenErrorBound(double th, int n, double reach, double height) {
+  const double step = th / n;
+  return 2.0 * reach * std::sin(step / 4.0) + std::abs(height) * step * step / 4.0;
+}
+
+}  // namespace
+
 int sweepSegments(const ToolPart& part, const ToolPose& a, const ToolPose& b, int steps,
                   double tolerance) {
   if (steps < 0) throw std::invalid_argument("swept volume: steps must be >= 0");
@@ -68,15 +80,18 @@ int sweepSegments(const ToolPart& part, const ToolPose& a, const ToolPose& b, in
   if (steps > 0) return steps;
   if (th == 0.0) return 1;
   checkTolerance(tolerance);
-  const double reach = part.reach();
-  // Half a segment's turn moves a point at `reach` by 2 reach sin(th / 4n) <= tolerance.
+  const double h = part.centreHeight();
+  const double reach = part.reach(h);
+  // The turn alone needs 2 reach sin(th / 4n) <= tolerance; the sagitta adds a little.
   const double halfTurn = 2.0 * std::asin(std::min(1.0, tolerance / (2.0 * reach)));
-  const double n = std::ceil(th / (2.0 * halfTurn));
+  double n = std::max(1.0, std::ceil(th / (2.0 * halfTurn)));
+  while (n <= kMaxSegments && betweenErrorBound(th, static_cast<int>(n), reach, h) > tolerance)
+    n += std::max(1.0, std::floor(n / 64));
   if (!(n <= kMaxSegments))
     throw std::invalid_argument("swept volume: tolerance " + std::to_string(tolerance) +
                                 " needs more than " + std::to_string(kMaxSegments) +
                                 " steps for this turn of the tool axis");
-  return std::max(1, static_cast<int>(n));
+  return static_cast<int>(n);
 }
 
 SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const ToolPose& b,
@@ -84,10 +99,26 @@ SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const 
   const int n = sweepSegments(part, a, b, steps, tolerance);
   const ToolPose pa = normalizedPose(a);
   const ToolPose pb = normalizedPose(b);
-  std::vector<ToolPose> poses;
-  poses.reserve(n + 1);
-  for (int i = 0; i <= n; ++i) poses.push_back(interpolatePose(pa, pb, double(i) / n));
-  return SweptVolume(part, poses);
+  const double th = axisAngle(pa.axis, pb.axis);
+  if (th == 0.0) return SweptVolume(part, {Translation{pa.tip, pb.tip, pa.axis}}, 0.0);
+  // Pose j (at j/n) holds its axis from (j - 1/2)/n to (j + 1/2)/n, clamped to [0, 1].
+  // Turning about the part's centre instead of its tip halves the reach that the
+  // turn moves, so half as many steps meet the tolerance; the centre's path is an arc
+  // that each step replaces by its chord.
+  const double h = part.centreHeight();
+  auto centre = [&](double f) {
+    const ToolPose q = interpolatePose(pa, pb, f);
+    return q.tip + h * q.axis;
+  };
+  std::vector<Translation> moves;
+  moves.reserve(n + 1);
+  for (int j = 0; j <= n; ++j) {
+    const glm::dvec3 w = interpolatePose(pa, pb, double(j) / n).axis;
+    const glm::dvec3 from = j == 0 ? pa.tip : centre((j - 0.5) / n) - h * w;
+    const glm::dvec3 to = j == n ? pb.tip : centre((j + 0.5) / n) - h * w;
+    moves.push_back(Translation{from, to, w});
+  }
+  return SweptVolume(part, moves, betweenErrorBound(th, n, part.reach(h), h));
 }
 
 SweptVolume SweptVolume::at(const ToolPart& part, const ToolPose& pose) {
@@ -100,26 +131,43 @@ SweptVolume::SweptVolume(const ToolPart& part, std::span<const ToolPose> poses) 
   p.reserve(poses.size());
   for (const ToolPose& q : poses) p.push_back(normalizedPose(q));
   const double reach = part.reach();
-  // Pose j holds from the midpoint before it to the midpoint after it.
+  // Pose j holds from the midpoint before it, through its tip, to the midpoint after.
+  std::vector<Translation> moves;
   for (size_t j = 0; j < p.size(); ++j) {
     const glm::dvec3 from = j == 0 ? p[j].tip : 0.5 * (p[j - 1].tip + p[j].tip);
     const glm::dvec3 to = j + 1 == p.size() ? p[j].tip : 0.5 * (p[j].tip + p[j + 1].tip);
+    moves.push_back(Translation{from, p[j].tip, p[j].axis});
+    moves.push_back(Translation{p[j].tip, to, p[j].axis});
     if (j + 1 < p.size()) {
       const double th = axisAngle(p[j].axis, p[j + 1].axis);
       errorBound_ = std::max(errorBound_, 2.0 * reach * std::sin(th / 4.0));
     }
+  }
+  build(part, moves);
+  if (bodies_.empty()) bounds_ = Aabb{p[0].tip, p[0].tip};
+}
+
+SweptVolume::SweptVolume(const ToolPart& part, const std::vector<Translation>& moves,
+                         double errorBound)
+    : errorBound_(errorBound) {
+  build(part, moves);
+  if (bodies_.empty()) bounds_ = Aabb{moves.front().from, moves.front().from};
+}
+
+void SweptVolume::build(const ToolPart& part, const std::vector<Translation>& moves) {
+  // Runs with one axis along one line are one translation: exact, and cheaper.
+  for (const Translation& m : moves) {
     if (!translations_.empty()) {
       Translation& run = translations_.back();
-      if (run.axis == p[j].axis && collinearContinuation(run, to)) {
-        run.to = to;
+      if (run.axis == m.axis && run.to == m.from && collinearContinuation(run, m.to)) {
+        run.to = m.to;
         continue;
       }
     }
-    translations_.push_back(Translation{from, to, p[j].axis});
+    translations_.push_back(m);
   }
   bounds_ = emptyBox();
   for (const Translation& tr : translations_) addTranslation(part, tr);
-  if (bodies_.empty()) bounds_ = Aabb{p[0].tip, p[0].tip};
 }
 
 void SweptVolume::addTranslation(const ToolPart& part, const Translation& tr) {

@@ -4,9 +4,8 @@
 // A move with a constant axis is a translation, and its sweep is represented exactly:
 // every convex body of the part is Minkowski-summed with the segment and cut with the
 // grid line in closed form (section_solver.h). A move that turns the axis becomes a
-// chain of poses; each pose's axis holds while the tip runs over the half-segments on
-// either side of it, so every pose is exact and the rest is off by at most
-// errorBound(): the chord a point at the part's reach travels in half a segment's turn.
+// union of translations, each with one in-between pose's axis, off from the true
+// sweep by at most errorBound().
 #include <span>
 #include <vector>
 
@@ -27,7 +26,10 @@ class SweptVolume final : public LineSolid {
  public:
   // The part moving from `a` to `b`: tip on the segment, axis along the great circle
   // (slerp). steps > 0: that many equal segments; steps == 0: as many as keep
-  // errorBound() <= tolerance (one for a pure translation). Throws
+  // errorBound() <= tolerance (one for a pure translation). The pose at j/n holds its
+  // axis from (j - 1/2)/n to (j + 1/2)/n while the part's centre (centreHeight) runs
+  // on the chord of its path: the bound is the turn of half a segment at the reach
+  // from the centre plus the chord's sagitta. The end poses are exact. Throws
   // std::invalid_argument for a non-finite pose, a zero axis, opposite axes (no
   // unique great circle: split the move) or a tolerance that is not > 0 when needed.
   static SweptVolume between(const ToolPart& part, const ToolPose& a, const ToolPose& b, int steps,
@@ -35,7 +37,9 @@ class SweptVolume final : public LineSolid {
   // The part standing at one pose (a stamp).
   static SweptVolume at(const ToolPart& part, const ToolPose& pose);
   // Through a chain of poses (at least one), tips joined by segments, each pose's axis
-  // held over the half-segments next to it; runs with one axis on one line merge.
+  // held over the half-segments next to it (so every pose is exact); runs with one
+  // axis on one line merge. errorBound() is the turn of half a segment at the reach
+  // from the tip, against the axis slerped between consecutive poses.
   SweptVolume(const ToolPart& part, std::span<const ToolPose> poses);
 
   Aabb bounds() const override { return bounds_; }
@@ -69,6 +73,8 @@ class SweptVolume final : public LineSolid {
     int pieceEnd = 0;
   };
 
+  SweptVolume(const ToolPart& part, const std::vector<Translation>& moves, double errorBound);
+  void build(const ToolPart& part, const std::vector<Translation>& moves);
   void addTranslation(const ToolPart& part, const Translation& tr);
   bool bodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
 

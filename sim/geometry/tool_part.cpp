@@ -58,14 +58,25 @@ double ConvexBody::radiusAt(double z) const {
   return 0.0;
 }
 
-double ToolPart::reach() const {
+double ToolPart::reach(double height) const {
   double r = 0.0;
   for (const ConvexBody& b : bodies)
     for (const RevolvedPiece& p : b.pieces) {
-      const double z = std::max(std::abs(p.z0), std::abs(p.z1));
+      const double z = std::max(std::abs(p.z0 - height), std::abs(p.z1 - height));
       r = std::max(r, std::hypot(p.maxRadius(), z));
     }
   return r;
+}
+
+double ToolPart::centreHeight() const {
+  if (bodies.empty()) return 0.0;
+  double lo = bodies.front().bottom();
+  double hi = bodies.front().top();
+  for (const ConvexBody& b : bodies) {
+    lo = std::min(lo, b.bottom());
+    hi = std::max(hi, b.top());
+  }
+  return 0.5 * (lo + hi);
 }
 
 namespace {

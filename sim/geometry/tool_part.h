@@ -48,8 +48,11 @@ struct ToolPart {
   ToolPartKind kind = ToolPartKind::kCutter;
   std::vector<ConvexBody> bodies;  // empty when the part has no extent (no holder)
 
-  // Distance from the tip of the farthest point: what a rotation moves most.
-  double reach() const;
+  // Distance of the farthest point from the axis point at `height` above the tip:
+  // what a turn of the axis about that point moves most.
+  double reach(double height = 0.0) const;
+  // Half-way between the lowest and highest point: the pivot with the least reach.
+  double centreHeight() const;
   bool empty() const { return bodies.empty(); }
 };
 

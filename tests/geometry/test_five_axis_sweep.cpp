@@ -113,19 +113,42 @@ TEST(FiveAxisSweep, TurningAboutTheTipAlone) {
 
 TEST(FiveAxisSweep, SegmentCountFollowsTheChordBound) {
   const ToolPart part = makeToolPart(makeTool(ToolShape::kBall), ToolPartKind::kCutter);
-  const double reach = part.reach();  // hypot(3, 12)
-  EXPECT_NEAR(reach, std::hypot(3.0, 12.0), 1e-12);
+  EXPECT_NEAR(part.reach(), std::hypot(3.0, 12.0), 1e-12);
+  EXPECT_EQ(part.centreHeight(), 6.0);
+  const double reach = part.reach(6.0);  // about the centre: hypot(3, 6)
+  EXPECT_NEAR(reach, std::hypot(3.0, 6.0), 1e-12);
   const ToolPose a{{0, 0, 0}, {0, 0, 1}};
   const ToolPose b{{0, 0, 0}, tilted(30, {1, 0, 0})};
-  // n >= theta / (4 asin(tol / (2 reach)))
+  const double th = testing::kPi / 6;
   for (double tol : {0.1, 0.01, 0.001}) {
     const int n = sweepSegments(part, a, b, 0, tol);
-    const double need = (testing::kPi / 6) / (4 * std::asin(tol / (2 * reach)));
-    EXPECT_EQ(n, static_cast<int>(std::ceil(need))) << tol;
-    EXPECT_LE(2 * reach * std::sin(testing::kPi / 6 / (4 * n)), tol * (1 + 1e-12));
+    // The turn alone needs n >= th / (4 asin(tol / (2 reach))); the sagitta a little more.
+    const double turnOnly = std::ceil(th / (4 * std::asin(tol / (2 * reach))));
+    EXPECT_GE(n, turnOnly) << tol;
+    EXPECT_LE(n, 1.05 * turnOnly + 1) << tol;
+    const double bound = 2 * reach * std::sin(th / n / 4) + 6.0 * (th / n) * (th / n) / 4;
+    EXPECT_LE(bound, tol) << tol;
+    const SweptVolume s = SweptVolume::between(part, a, b, 0, tol);
+    EXPECT_DOUBLE_EQ(s.errorBound(), bound);
+    EXPECT_EQ(s.translations().size(), size_t(n) + 1);
   }
   EXPECT_EQ(sweepSegments(part, a, b, 7, 0.0), 7);
   EXPECT_EQ(sweepSegments(part, a, {{5, 0, 0}, {0, 0, 1}}, 0, 0.0), 1);  // a translation
+}
+
+TEST(FiveAxisSweep, PoseChainsKeepEveryPose) {
+  // A chain that turns a corner: each pose's tip is in its translations.
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kFlat), ToolPartKind::kCutter);
+  const ToolPose poses[] = {
+      {{0, 0, 0}, {0, 0, 1}}, {{4, 0, 0}, {0, 0, 1}}, {{4, 3, 0}, tilted(5, {1, 0, 0})}};
+  const SweptVolume s(part, poses);
+  const auto& trs = s.translations();
+  ASSERT_EQ(trs.size(), 3u);  // 0..4 merged; 4..(4,1.5) at pose 1; (4,1.5)..(4,3) at pose 2
+  EXPECT_EQ(trs[0].to, glm::dvec3(4, 0, 0));
+  EXPECT_EQ(trs[1].to, glm::dvec3(4, 1.5, 0));
+  EXPECT_EQ(trs[2].from, glm::dvec3(4, 1.5, 0));
+  EXPECT_EQ(trs[2].to, glm::dvec3(4, 3, 0));
+  EXPECT_NEAR(s.errorBound(), 2 * part.reach() * std::sin(5 * testing::kPi / 180 / 4), 1e-15);
 }
 
 TEST(FiveAxisSweep, FixedStepsAreExactlyTheUnionOfTheirTranslations) {
@@ -137,8 +160,8 @@ TEST(FiveAxisSweep, FixedStepsAreExactlyTheUnionOfTheirTranslations) {
   ASSERT_EQ(trs.size(), 5u);  // half, three whole, half
   EXPECT_EQ(trs.front().from, a.tip);
   EXPECT_EQ(trs.back().to, b.tip);
-  EXPECT_LT(glm::length(trs.front().axis - a.axis), 1e-15);
-  EXPECT_LT(glm::length(trs.back().axis - b.axis), 1e-15);
+  EXPECT_EQ(trs.front().axis, a.axis);
+  EXPECT_EQ(trs.back().axis, b.axis);
   std::vector<SweptVolume> parts;
   for (const Translation& tr : trs) {
     const ToolPose ends[2] = {{tr.from, tr.axis}, {tr.to, tr.axis}};
