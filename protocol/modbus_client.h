@@ -1,0 +1,110 @@
+#pragma once
+// Reading a controller's registers over Modbus TCP. `RegisterSource` is what a
+// shadow polls; `ModbusTcpClient` is its libmodbus implementation.
+//
+// Failures are ModbusError, never a crash, a hang beyond timeout_ms or a SIGPIPE.
+// After any failure except a Modbus exception reply (illegal address, ...: the
+// connection is still in step) the client drops the connection, because libmodbus
+// takes a late reply for the next request after a timeout, and reconnects on a
+// later call once its backoff has passed: 50 ms, doubling per failure up to 2 s,
+// back to 50 ms after a success. A call inside the backoff fails at once with
+// kind kBackoff: the client never sleeps, so a poller keeps its own rhythm.
+//
+// Thread-safety: none. Use one client per polling thread.
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "protocol/modbus_map.h"
+
+struct _modbus;  // libmodbus's context (modbus_t)
+
+namespace mdhd::protocol {
+
+class ModbusError : public std::runtime_error {
+ public:
+  enum class Kind {
+    kConnect,         // cannot connect (refused, unreachable, name not found)
+    kTimeout,         // no (complete) reply within timeout_ms
+    kConnectionLost,  // the peer closed or reset the connection
+    kException,       // the controller answered with a Modbus exception
+    kMalformed,       // a reply that is not a valid answer to the request
+    kBadValue,        // registers read fine but decode to no value (NaN, inf, ...)
+    kBackoff,         // waiting before the next reconnection attempt
+  };
+  ModbusError(Kind kind, int code, const std::string& message)
+      : std::runtime_error(message), kind_(kind), code_(code) {}
+  Kind kind() const { return kind_; }
+  int code() const { return code_; }  // errno / libmodbus error number, 0 when none
+
+ private:
+  Kind kind_;
+  int code_;
+};
+
+const char* modbusErrorKindName(ModbusError::Kind kind);
+
+class RegisterSource {
+ public:
+  virtual ~RegisterSource() = default;
+  // One poll of every mapped register, decoded. Throws ModbusError.
+  virtual ModbusSample read() = 0;
+  // Writes the map's feed-hold coil (true: hold). Throws ModbusError.
+  virtual void writeFeedHold(bool hold) = 0;
+};
+
+struct BackoffPolicy {
+  std::chrono::milliseconds initial{50};
+  std::chrono::milliseconds max{2000};
+};
+
+class ModbusTcpClient : public RegisterSource {
+ public:
+  using Clock = std::function<std::chrono::steady_clock::time_point()>;
+
+  // The map must be valid (validateModbusMap). Does not connect yet. `clock` is
+  // for tests of the backoff; by default the steady clock.
+  explicit ModbusTcpClient(ModbusMap map, BackoffPolicy backoff = {}, Clock clock = {});
+  ~ModbusTcpClient() override;
+  ModbusTcpClient(const ModbusTcpClient&) = delete;
+  ModbusTcpClient& operator=(const ModbusTcpClient&) = delete;
+
+  ModbusSample read() override;
+  void writeFeedHold(bool hold) override;
+
+  // The raw registers of one read (as planReads plans them), for tools and benches.
+  std::vector<std::uint16_t> readBlock(const ReadBlock& block);
+
+  bool connected() const { return connected_; }
+  // The wait imposed by the latest failure (0 after a success) and the next one's.
+  std::chrono::milliseconds lastWait() const { return last_wait_; }
+  std::chrono::milliseconds nextWait() const { return next_wait_; }
+  // When the next connection attempt is allowed.
+  std::chrono::steady_clock::time_point nextAttempt() const { return next_attempt_; }
+  std::uint64_t connects() const { return connects_; }  // successful connections so far
+  const ModbusMap& map() const { return map_; }
+
+ private:
+  void ensureConnected();
+  void readInto(const ReadBlock& block, std::uint16_t* out);
+  void disconnect();
+  [[noreturn]] void fail(int code, const std::string& what);
+  std::string where() const;
+
+  ModbusMap map_;
+  std::vector<ReadBlock> blocks_;
+  BackoffPolicy policy_;
+  Clock clock_;
+  _modbus* ctx_ = nullptr;
+  bool connected_ = false;
+  std::chrono::milliseconds last_wait_{0};
+  std::chrono::milliseconds next_wait_;
+  std::chrono::steady_clock::time_point next_attempt_{};
+  std::uint64_t connects_ = 0;
+  std::vector<std::vector<std::uint16_t>> words_;
+};
+
+}  // namespace mdhd::protocol
