@@ -115,6 +115,7 @@ bool Reader::processLine(Block& out) {
     }
     if (isClosingPercent()) {
       ended_ = true;
+      ended_at_percent_ = true;
       return false;
     }
   }

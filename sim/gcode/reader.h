@@ -52,6 +52,14 @@ class Reader {
   bool next(Block& out);
 
   std::uint64_t steps() const { return steps_; }
+  // The program's first line was a '%' tape mark / a closing '%' line ended it.
+  // LinuxCNC rejects a program that starts with '%' and reaches the end of
+  // the file without the closing '%' or M2/M30 ("File ended with no percent
+  // sign"); that check belongs to whoever knows about M2 (the interpreter).
+  bool startedWithPercent() const { return percent_opened_; }
+  bool endedAtPercent() const { return ended_ && ended_at_percent_; }
+
+  static constexpr std::size_t kMaxOpenBlocks = 10'000;
 
  private:
   struct Source {
@@ -121,6 +129,7 @@ class Reader {
   void skipIfBranches(const std::string& label, int line);
   OKeyword skipTo(const std::string& label, std::initializer_list<OKeyword> stops, int from_line,
                   std::string_view what, bool in_definition = false);
+  Control& pushControl(std::vector<Control>& controls);
   Control& topControl(ControlKind kind, const OWordHead& head, const Cursor& c);
   void countIteration(Control& control);
   [[noreturn]] void failLine(int line, const std::string& message) const;
@@ -140,6 +149,7 @@ class Reader {
   std::uint64_t line_start_ = 0;
   std::uint64_t steps_ = 0;
   bool percent_opened_ = false;
+  bool ended_at_percent_ = false;
   bool ended_ = false;
 };
 

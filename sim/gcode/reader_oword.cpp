@@ -195,6 +195,16 @@ void Reader::returnFromSub(Cursor& c, const OWordHead& head) {
   caller.setLineNumber(frame.return_line);
 }
 
+// Open if / loop blocks of one call level. Their number is capped so that a
+// program opening blocks it never closes cannot grow memory without bound.
+Reader::Control& Reader::pushControl(std::vector<Control>& controls) {
+  if (controls.size() >= kMaxOpenBlocks) {
+    failLine(ref_.line, "Too many nested O-word blocks (more than " +
+                            std::to_string(kMaxOpenBlocks) + " open if / while / do / repeat)");
+  }
+  return controls.emplace_back();
+}
+
 Reader::Control& Reader::topControl(ControlKind kind, const OWordHead& head, const Cursor& c) {
   std::vector<Control>& controls = frames_.back().controls;
   if (controls.empty() || controls.back().kind != kind || controls.back().label != head.label) {
@@ -210,7 +220,7 @@ void Reader::handleIf(Cursor& c, const OWordHead& head) {
   switch (head.keyword) {
     case OKeyword::kIf: {
       const bool condition = readCondition(c, head) != 0.0;
-      Control& control = controls.emplace_back();
+      Control& control = pushControl(controls);
       control.kind = ControlKind::kIf;
       control.label = head.label;
       control.line = ref_.line;
@@ -270,7 +280,7 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
   const bool top_matches = !controls.empty() && controls.back().label == head.label;
   if (head.keyword == OKeyword::kDo) {
     readTrailingComments(c);
-    Control& control = controls.emplace_back();
+    Control& control = pushControl(controls);
     control.kind = ControlKind::kDo;
     control.label = head.label;
     control.offset = source().tell();
@@ -284,7 +294,7 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
       skipTo(head.label, {OKeyword::kEndRepeat}, line, "repeat");
       return;
     }
-    Control& control = controls.emplace_back();
+    Control& control = pushControl(controls);
     control.kind = ControlKind::kRepeat;
     control.label = head.label;
     control.offset = source().tell();
@@ -309,7 +319,7 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
                      controls.back().offset == line_start_;
   if (condition) {
     if (!again) {
-      Control& control = controls.emplace_back();
+      Control& control = pushControl(controls);
       control.kind = ControlKind::kWhile;
       control.label = head.label;
       control.offset = line_start_;

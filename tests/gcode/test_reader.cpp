@@ -177,6 +177,15 @@ TEST(Reader, PercentMarksTheProgramsEnds) {
   const auto spaced = readAll(" % tape\nG0 X1\n  %  \nG0 X2\n");
   EXPECT_EQ(values(spaced, 'X'), std::vector<double>{1.0});
   EXPECT_STREQ(readError("%\nG0 X1\n%5\n").what(), "Bad character '%' used");
+  for (const auto& [program, closed] : {std::pair{"%\nG0\n%\n", true}, {"%\nG0\n", false}}) {
+    ParameterStore params;
+    Reader reader(makeStringSource(program), params);
+    Block block;
+    while (reader.next(block)) {
+    }
+    EXPECT_TRUE(reader.startedWithPercent());
+    EXPECT_EQ(reader.endedAtPercent(), closed);
+  }
   const auto no_marks = readAll("G0 X1\nG0 X2\n");
   EXPECT_EQ(values(no_marks, 'X'), (std::vector<double>{1.0, 2.0}));
 }

@@ -1,6 +1,9 @@
 // O-word control flow through the Reader.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "tests/gcode/test_reader_helpers.h"
 
 namespace mdhd::gcode {
@@ -302,9 +305,102 @@ TEST(OWord, EndlessLoopsAreStopped) {
   EXPECT_STREQ(s.what(), "Program exceeds the limit of 500 lines read (endless loop?)");
 }
 
+TEST(OWord, BlocksNeverClosedAreCapped) {
+  // Ifs opened line after line and never closed: memory must not grow unbounded.
+  std::string program;
+  for (int i = 0; i < 10'001; ++i) program += "o" + std::to_string(i) + " if [1]\n";
+  const GcodeError e = readError(program);
+  EXPECT_STREQ(e.what(),
+               "Too many nested O-word blocks (more than 10000 open if / while / do / repeat)");
+  EXPECT_EQ(e.line(), 10'001);
+}
+
 TEST(OWord, InfiniteRecursionIsStopped) {
   const GcodeError e = readError("o1 sub\no1 call\no1 endsub\no1 call\n");
   EXPECT_STREQ(e.what(), "Too many nested subroutine calls (limit 10 levels)");
+}
+
+TEST(OWord, LabelsAreIntegerValuesOrNames) {
+  // o0100, o100 and o[50*2] are the same label; names ignore case and blanks.
+  EXPECT_EQ(xs("#1 = 100\no[50*2] if [1]\nX1\no#1 else\nX2\no0100 endif\nX3\n"),
+            (std::vector<double>{1.0, 3.0}));
+  EXPECT_EQ(xs("o< My Sub > sub\nX#1\no<mysub> endsub\nO<MYSUB> CALL [5]\n"),
+            std::vector<double>{5.0});
+}
+
+TEST(OWord, CommentsBetweenCallArguments) {
+  EXPECT_EQ(xs("o1 sub\nX[#1 + #2]\no1 endsub\no1 call [1] (x) [2] (y)\n"),
+            std::vector<double>{3.0});
+}
+
+TEST(OWord, ExternalFileIsPreferredToALaterDefinition) {
+  // LinuxCNC looks for <name>.ngc before searching on in the current file.
+  // (Like the interpreter, stop at M2: the definition after it would be a redefinition.)
+  ParameterStore params;
+  Reader reader(makeStringSource("o<s> call\nM2\no<s> sub\nX1\no<s> endsub\n"), params,
+                memoryLoader({{"s", "o<s> sub\nX2\no<s> endsub\n"}}));
+  Block block;
+  ASSERT_TRUE(reader.next(block));
+  EXPECT_EQ(block.pos.file, "s.ngc");
+  EXPECT_EQ(testing::wordValue(block, 'X'), 2.0);
+  ASSERT_TRUE(reader.next(block));
+  EXPECT_EQ(testing::wordValue(block, 'M'), 2.0);
+  EXPECT_STREQ(readError("o<s> call\nM2\no<s> sub\nX1\no<s> endsub\n", {},
+                         memoryLoader({{"s", "o<s> sub\nX2\no<s> endsub\n"}}))
+                   .what(),
+               "Redefining subroutine o<s>, already defined in s.ngc line 1");
+}
+
+TEST(OWord, ExternalSubCallsASubOfTheProgram) {
+  ParameterStore params;
+  const auto blocks = readAll("o<inner> sub\nX#1\no<inner> endsub\no<outer> call [7]\nX9\n", params,
+                              memoryLoader({{"outer",
+                                             "o<outer> sub\no<inner> call [#1 * 2]\n"
+                                             "Y1\no<outer> endsub\n"}}));
+  ASSERT_EQ(blocks.size(), 3u);
+  EXPECT_EQ(values(blocks, 'X'), (std::vector<double>{14.0, 9.0}));
+  EXPECT_EQ(blocks[0].pos.file, "");
+  EXPECT_EQ(blocks[1].pos.file, "outer.ngc");
+  EXPECT_EQ(blocks[1].pos.line, 3);
+}
+
+TEST(OWord, ExternalFileWithoutTheSubIsAnError) {
+  const GcodeError e =
+      readError("G0\no<x> call\n", {}, memoryLoader({{"x", "(nothing here)\nG0\n"}}));
+  EXPECT_STREQ(e.what(), "File x.ngc does not define o<x> sub");
+  EXPECT_EQ(e.pos().file, "");
+  EXPECT_EQ(e.line(), 2);
+}
+
+TEST(OWord, DirectoryLoaderReadsFiles) {
+  const auto dir = std::filesystem::temp_directory_path() / "mdhd_reader_loader_test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream out(dir / "plus.ngc");
+    out << "o<plus> sub\no<plus> return [#1 + #2]\no<plus> endsub\n";
+  }
+  ParameterStore params;
+  Reader reader(makeStringSource("o<plus> call [2] [3]\nX#<_value>\n"), params,
+                makeDirectoryLoader({"/nonexistent", dir.string()}));
+  Block block;
+  ASSERT_TRUE(reader.next(block));
+  EXPECT_EQ(block.words.at(0).value, 5.0);
+  EXPECT_FALSE(reader.next(block));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(OWord, SkippedLinesAreNotEvaluated) {
+  // Errors in branches not taken do not count (only the O-word lines are read).
+  EXPECT_EQ(xs("o1 if [0]\nX[1/0] #<undefined>\no1 endif\nX1\n"), std::vector<double>{1.0});
+}
+
+TEST(OWord, ManyElseifsDoNotRecurse) {
+  std::string program = "#1 = 4999\no1 if [#1 EQ -1]\nX-1\n";
+  for (int i = 0; i < 5000; ++i) {
+    program += "o1 elseif [#1 EQ " + std::to_string(i) + "]\nX" + std::to_string(i) + "\n";
+  }
+  program += "o1 endif\n";
+  EXPECT_EQ(xs(program), std::vector<double>{4999.0});
 }
 
 }  // namespace
