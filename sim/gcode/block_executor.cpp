@@ -8,6 +8,10 @@ namespace mdhd::gcode {
 
 BlockExecutor::BlockExecutor(InterpreterConfig config, MotionSink& sink)
     : config_(std::move(config)), out_(sink, config_.home) {
+  // A tiny tolerance would turn one spline into millions of moves.
+  if (!(config_.spline_tolerance >= 1e-6))
+    throw GcodeError(SourcePos{"configuration", 0, 0},
+                     "spline_tolerance must be at least 0.000001 mm");
   for (int i = 0; i < kCoordSystems; ++i)
     for (int a = 0; a < 3; ++a) state_.g5x[i][a] = config_.work_offsets[i][a];
   state_.current = toProgram(state_, config_.home);
@@ -66,29 +70,62 @@ bool usesAxesNonModal(int g0) {
   return g0 == 100 || g0 == 280 || g0 == 300 || g0 == 920;
 }
 
-void checkArgumentLetters(const BlockExecutor&, const Block& block, const BlockWords& w,
-                          int motion) {
+bool isCompOn(int g7) {
+  return g7 == 410 || g7 == 420 || g7 == 411 || g7 == 421;
+}
+
+// Words no code of the block uses, in LinuxCNC's words (check_other_codes);
+// `motion` is the motion the block will execute (-1: none).
+void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
   const bool arc = motion == 20 || motion == 30;
   const bool cycle = isCycle(motion);
   const int g0 = w.g[kGNonModal];
-  auto reject = [&](char c, const char* text) {
-    if (w.has(c)) failAt(block, w.col(c), text);
+  const bool g10 = g0 == 100;
+  auto reject = [&](char c, bool unused, const char* text) {
+    if (unused && w.has(c)) failAt(block, w.col(c), text);
   };
-  if (!arc && motion != 870) {
-    reject('I', "I word with no G2, G3, G5, G5.1, G76, or G87 to use it");
-    reject('J', "J word with no G2, G3, G5, G5.1, G76, or G87 to use it");
-    reject('K', "K word with no G2, G3, G33, G33.1, G76, or G87 to use it");
+  reject('A', cycle, "Cannot put an a in canned cycle");
+  reject('B', cycle, "Cannot put a b in canned cycle");
+  reject('C', cycle, "Cannot put a c in canned cycle");
+  const int g7 = w.g[kGCutterComp];
+  reject('D', !isCompOn(g7) && w.g[kGSpindleMode] != 960,
+         "D word with no G41, G41.1, G42, G42.1, or G96 to use it");
+  reject('E', true, "E word with no G76, M66, M67 or M68 to use it");
+  const int g8 = w.g[kGToolLength];
+  reject('H', g8 != 430 && g8 != 432 && g8 != 434, "H word with no G43 or G76 to use it");
+  const bool ij_used = arc || motion == 50 || motion == 51 || motion == 870 || g10;
+  reject('I', !ij_used, "I word with no G2, G3, G5, G5.1, G10, G76, or G87 to use it");
+  reject('J', !ij_used, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it");
+  reject('K', !arc && motion != 330 && motion != 331 && motion != 870,
+         "K word with no G2, G3, G33, G33.1, G76, or G87 to use it");
+  reject('L', !cycle && motion != 52 && !g10 && !isCompOn(g7),
+         "L word with no G10, cutter compensation, canned cycle, digital/analog input, or NURBS "
+         "code");
+  const int m_override = w.m[kMOverride];
+  const bool p_used = g10 || g0 == 40 || w.g[kGPathMode] == 640 || arc || motion == 50 ||
+                      motion == 52 || motion == 820 || motion == 860 || motion == 880 ||
+                      motion == 890 || (m_override >= 500 && m_override <= 530);
+  reject('P', !p_used,
+         "P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 "
+         "M63 M64 M65 M66 or user M code to use it");
+  if (arc && w.has('P')) {
+    const double p = w.get('P');
+    if (std::fabs(std::round(p) - p) > 0.001)
+      failAt(block, w.col('P'), "P value not an integer with M19 G2 or G3");
+    if (std::round(p) < 1)
+      failAt(block, w.col('P'), "P value should be 1 or greater with G2 or G3");
   }
-  if (!arc && !cycle && g0 != 100) reject('R', "R word with no G code that uses it");
-  const int comp = w.g[kGCutterComp];
-  if (comp != 410 && comp != 420 && comp != 411 && comp != 421)
-    reject('D', "D word with no G41, G41.1, G42, or G42.1 to use it");
-  const int tlo = w.g[kGToolLength];
-  if (tlo != 430 && tlo != 434) reject('H', "H word with no G43 or G43.4 to use it");
-  if (g0 != 100 && !cycle) reject('L', "L word with no G10 or canned cycle to use it");
-  if (motion != 730 && motion != 830 && w.m[kMToolChange] != 610 && w.g[kGPathMode] != 640)
-    reject('Q', "Q word with no G73, G83, G64 or M61 to use it");
-  if (w.has('E')) failAt(block, w.col('E'), "E word with no G76 to use it");
+  reject('Q',
+         motion != 830 && motion != 730 && motion != 50 && !g10 && w.m[kMToolChange] != 610 &&
+             w.g[kGPathMode] != 640,
+         "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code that uses "
+         "it");
+  reject('R', !arc && !cycle && !g10 && g7 != 411 && g7 != 421,
+         "R word with no G code that uses it");
+  if (motion == 330 || motion == 331) {
+    if (!w.has('K')) failAt(block, 0, "K word missing with g33");
+    reject('F', true, "F word used with a g33");
+  }
 }
 
 }  // namespace
@@ -116,7 +153,7 @@ void BlockExecutor::checkWordUse(Step& st) {
     if (incremental) st.fail("Cannot use G53 incremental", w.g_column[kGNonModal]);
   }
   const int motion_for_words = explicit_motion == 800 ? 800 : (st.motion >= 0 ? st.motion : -1);
-  checkArgumentLetters(*this, st.block, w, motion_for_words);
+  checkArgumentLetters(st.block, w, motion_for_words);
   if (w.has('F') && w.get('F') < 0) st.failWord('F', "Negative F word used");
   if (w.has('S') && w.get('S') < 0) st.failWord('S', "Negative spindle speed used");
   if (w.has('T') && (w.get('T') < 0 || w.get('T') != std::floor(w.get('T'))))
@@ -166,6 +203,9 @@ void BlockExecutor::runNonModal(Step& st) {
       stored = toMachine(st.s, st.s.current);
       break;
     }
+    case 53:
+      nurbsEnd(st);
+      break;
     case 920:
     case 921:
     case 922:

@@ -76,6 +76,12 @@ class BlockExecutor {
   void straight(Step& st, int motion, const AxisValues& end);
   void arc(Step& st, int motion, const AxisValues& end);
   void probe(Step& st, const AxisValues& end);
+  void spindleSynced(Step& st, int motion, const AxisValues& end);
+  // Splines (block_spline.cpp).
+  void spline(Step& st, int motion);
+  void nurbsPoint(Step& st);
+  void nurbsEnd(Step& st);
+  void emitCurve(Step& st, const std::vector<std::array<double, 2>>& points);
   void emitStraight(Step& st, MotionType type, const AxisValues& end, const FeedInfo& feed);
   // Canned cycles (canned_cycles.cpp).
   void cannedCycle(Step& st, int motion);

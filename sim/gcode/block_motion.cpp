@@ -30,11 +30,23 @@ void BlockExecutor::runMotion(Step& st) {
     cannedCycle(st, motion);
     return;
   }
+  if (motion == 50 || motion == 51) {
+    spline(st, motion);
+    s.motion = motion;
+    return;
+  }
+  if (motion == 52) {
+    nurbsPoint(st);
+    s.motion = motion;
+    return;
+  }
   const AxisValues end = findEnd(st);
   if (motion >= 382 && motion <= 385)
     probe(st, end);
   else if (motion == 0 || motion == 10)
     straight(st, motion, end);
+  else if (motion == 330 || motion == 331)
+    spindleSynced(st, motion, end);
   else
     arc(st, motion, end);
   s.motion = motion;
@@ -130,8 +142,8 @@ void BlockExecutor::straight(Step& st, int motion, const AxisValues& end) {
   emitStraight(st, type, end, feed);
 }
 
-// G38.2..G38.5: a feed move to the target. Without a probe signal the move runs
-// to its end, which is also what a verifier must assume.
+// G38.2..G38.5: a feed move toward the target that ends where the probe trips
+// (InterpreterConfig::probe_stop) or, without a probe model, at the target.
 void BlockExecutor::probe(Step& st, const AxisValues& end) {
   InterpState& s = st.s;
   const int column = st.gColumn(kGMotion);
@@ -145,7 +157,45 @@ void BlockExecutor::probe(Step& st, const AxisValues& end) {
   double d2 = 0.0;
   for (int a = kX; a <= kZ; ++a) d2 += (end[a] - s.current[a]) * (end[a] - s.current[a]);
   if (std::sqrt(d2) < 0.254) st.fail("Start of probe move is within 0.01 inch of end", column);
-  emitStraight(st, MotionType::kFeed, end, feedFor(st, 0.0, false));
+  // The machine rests where the probe model says it trips, else at the target.
+  AxisValues stop_program = end;
+  bool tripped = false;
+  if (config_.probe_stop) {
+    AxisValues stop = toMachine(s, end);
+    tripped = config_.probe_stop(out_.machine(), toMachine(s, end), stop);
+    if (tripped) stop_program = toProgram(s, stop);
+  }
+  emitStraight(st, MotionType::kFeed, stop_program, feedFor(st, 0.0, false));
+  s.probe_point = stop_program;
+  s.probe_tripped = tripped;
+  ++s.probe_count;
+}
+
+// G33 (a feed move locked to the spindle, K = distance per revolution) and
+// G33.1 (rigid tapping: in to the target, spindle reversed, out to the start;
+// LinuxCNC's RIGID_TAP leaves the position where it was).
+void BlockExecutor::spindleSynced(Step& st, int motion, const AxisValues& end) {
+  InterpState& s = st.s;
+  const int column = st.gColumn(kGMotion);
+  const char* name = motion == 330 ? "G33" : "G33.1";
+  if (s.spindle == SpindleState::kOff)
+    st.fail(std::string("Spindle not turning in ") + name, column);
+  if (s.comp_side != CompSide::kOff)
+    st.fail(std::string("Cannot use ") + name + " with cutter radius compensation", column);
+  if (st.w.g[kGNonModal] == 530) st.fail(std::string("Cannot use ") + name + " with G53", column);
+  if (motion == 331) {
+    for (int a = kA; a < kAxisCount; ++a)
+      if (end[a] != s.current[a]) st.failWord(kAxisLetters[a], "G33.1 moves only X, Y and Z");
+  }
+  FeedInfo feed;
+  feed.mode = FeedMode::kUnitsPerRevolution;
+  feed.rate = std::fabs(st.lenWord('K'));
+  if (feed.rate == 0.0) st.failWord('K', std::string("Zero pitch (K) with ") + name);
+  feed.raw = feed.rate;
+  feed.sync = true;
+  const AxisValues start = s.current;
+  emitStraight(st, MotionType::kFeed, end, feed);
+  if (motion == 331) emitStraight(st, MotionType::kFeed, start, feed);
 }
 
 void BlockExecutor::arc(Step& st, int motion, const AxisValues& end) {
@@ -175,12 +225,7 @@ void BlockExecutor::arc(Step& st, int motion, const AxisValues& end) {
   if (s.feed_mode == FeedMode::kUnitsPerRevolution && s.speed == 0.0)
     st.fail("Cannot feed with zero spindle speed in feed per rev mode", column);
   int turns = 1;
-  if (w.has('P')) {
-    const double p = w.get('P');
-    if (p < 1 || p != std::floor(p))
-      st.failWord('P', "P word must be a positive integer with G2/G3");
-    turns = static_cast<int>(p);
-  }
+  if (w.has('P')) turns = static_cast<int>(std::lround(w.get('P')));  // checked: >= 1
   double o1 = 0.0, o2 = 0.0;
   if (ijk) {
     if (s.arc_absolute && !w.has(l1))

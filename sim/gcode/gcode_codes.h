@@ -8,15 +8,15 @@ namespace mdhd::gcode {
 
 // G code modal groups (index into BlockWords::g).
 enum GGroup : int {
-  kGNonModal = 0,      // G4 G10 G28 G28.1 G30 G30.1 G53 G92 G92.1 G92.2 G92.3
-  kGMotion = 1,        // G0 G1 G2 G3 G80 G81..G89 G73
+  kGNonModal = 0,      // G4 G5.3 G10 G28 G28.1 G30 G30.1 G53 G92 G92.1 G92.2 G92.3
+  kGMotion = 1,        // G0 G1 G2 G3 G5 G5.1 G5.2 G33 G33.1 G38.x G73 G80 G81..G89
   kGPlane = 2,         // G17 G18 G19
   kGDistance = 3,      // G90 G91
   kGArcDistance = 4,   // G90.1 G91.1
   kGFeedMode = 5,      // G93 G94 G95
   kGUnits = 6,         // G20 G21
   kGCutterComp = 7,    // G40 G41 G42 G41.1 G42.1
-  kGToolLength = 8,    // G43 G43.1 G43.4 G49
+  kGToolLength = 8,    // G43 G43.1 G43.2 G43.4 G49
   kGRetract = 10,      // G98 G99
   kGCoordSystem = 12,  // G54 .. G59.3
   kGPathMode = 13,     // G61 G61.1 G64

@@ -3,8 +3,10 @@
 // Blocks are transactions: the executor works on a copy and commits it only
 // when the whole block succeeded.
 #include <array>
+#include <vector>
 
 #include "sim/gcode/motion.h"
+#include "sim/gcode/spline_math.h"
 
 namespace mdhd::gcode {
 
@@ -57,7 +59,15 @@ struct InterpState {
   double tool_length = 0.0;                      // Z offset in effect (G43/G43.1), mm
   int tool_length_tool = 0;                      // H of G43 / G43.4
   AxisValues g28{}, g30{};                       // stored machine positions
+  // Last G38.x: where it stopped (program frame, mm) and whether it tripped;
+  // probe_count tells a new result from an old one (#5061..#5070).
+  AxisValues probe_point{};
+  bool probe_tripped = false;
+  int probe_count = 0;
   CycleMemory cycle;
+  // G5.2: the NURBS collected so far (program frame, mm), drawn at G5.3.
+  std::vector<ControlPoint> nurbs;
+  int nurbs_order = 3;
   bool ended = false;  // M2/M30 seen
 };
 

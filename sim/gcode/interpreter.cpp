@@ -41,6 +41,14 @@ void Interpreter::publishParameters(bool offsets) {
   params_.set(5403, s.tool_length);
   const ToolEntry* tool = executor_.config().tools.find(s.tool);
   params_.set(5410, tool ? tool->diameter : 0.0);
+  if (s.probe_count != probe_published_) {  // #5061..#5069 probe point, #5070 tripped
+    probe_published_ = s.probe_count;
+    for (int a = 0; a < kAxisCount; ++a) {
+      const bool rotary = a >= kA && a <= kC;
+      params_.set(5061 + a, rotary ? s.probe_point[a] : s.probe_point[a] / unit);
+    }
+    params_.set(5070, s.probe_tripped ? 1.0 : 0.0);
+  }
   if (!offsets) return;
   // Offsets and stored positions in machine units (mm).
   for (int a = 0; a < kAxisCount; ++a) {

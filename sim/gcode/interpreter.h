@@ -37,6 +37,7 @@ class Interpreter {
   BlockExecutor executor_;
   ParameterStore params_;
   std::uint64_t blocks_ = 0;
+  int probe_published_ = 0;  // probe_count last written to #5061..#5070
 };
 
 }  // namespace mdhd::gcode

@@ -21,6 +21,16 @@ struct InterpreterConfig {
   // Finds o<name> call files; empty or returning null: not found.
   std::function<std::unique_ptr<LineSource>(std::string_view name)> subroutine_loader;
   bool block_delete = false;
+  // Where a G38.2..G38.5 move stops (machine values): given where it starts and
+  // its target, returns true and sets `stop` when the probe trips (the machine
+  // comes to rest at `stop`), false when it never trips. Unset: no probe model;
+  // every probe move then runs to its target, the only thing a verifier can
+  // assume without one (LinuxCNC itself re-reads the position after a probe).
+  std::function<bool(const AxisValues& start, const AxisValues& target, AxisValues& stop)>
+      probe_stop;
+  // Splines (G5, G5.1, G5.2/G5.3) are handed on as feed moves along a polyline
+  // that stays within this distance of the true curve (mm, > 0).
+  double spline_tolerance = 0.001;
 };
 
 }  // namespace mdhd::gcode

@@ -16,17 +16,17 @@ inline constexpr char kAxisLetters[kAxisCount + 1] = "XYZABCUVW";
 using AxisValues = std::array<double, kAxisCount>;
 
 enum class MotionType { kRapid, kFeed, kArc };
-enum class Plane { kXY, kXZ, kYZ };  // G17 G18 G19
+enum class Plane { kXY, kXZ, kYZ };                                          // G17 G18 G19
 enum class FeedMode { kUnitsPerMinute, kInverseTime, kUnitsPerRevolution };  // G94 G93 G95
 enum class SpindleState { kOff, kClockwise, kCounterClockwise };
 
 struct Motion {
   MotionType type = MotionType::kRapid;
-  SourcePos pos;            // the block that produced it (under G41/G42: as LinuxCNC, the
-                            // block being read when the queued move is released)
+  SourcePos pos;  // the block that produced it (under G41/G42: as LinuxCNC, the
+                  // block being read when the queued move is released)
   const std::string* block_text = nullptr;  // that block's text; valid during the callback
-  AxisValues start{};       // axis values where the motion starts
-  AxisValues end{};         // ... and ends. Linear: mm, rotary: degrees.
+  AxisValues start{};                       // axis values where the motion starts
+  AxisValues end{};                         // ... and ends. Linear: mm, rotary: degrees.
   // "Machine" values as LinuxCNC's canon commands them: program value + G92, rotated by
   // G10 L2 R, + G5x offset, + tool length offset (on Z while G43 is in effect).
   // When tcp is true (G43.4) X Y Z are instead the tool tip in W (program + G92 + G5x,
@@ -43,20 +43,23 @@ struct Motion {
   double feed = 0.0;
   FeedMode feed_mode = FeedMode::kUnitsPerMinute;
   double inverse_time = 0.0;  // the F word under G93 (1/min), else 0
+  // G33 / G33.1: the move is locked to the spindle; feed_mode is kUnitsPerRevolution and
+  // feed the pitch (mm per revolution, the K word).
+  bool spindle_sync = false;
   double spindle_rpm = 0.0;
   SpindleState spindle = SpindleState::kOff;
-  int tool = 0;  // tool number in the spindle (0: none)
+  int tool = 0;       // tool number in the spindle (0: none)
   bool comp = false;  // produced under cutter radius compensation
 };
 
 enum class EventType {
-  kDwell,          // value: seconds
-  kToolChange,     // tool: new tool in the spindle
-  kSpindle,        // spindle state / rpm changed
-  kCoolant,        // value: 0 off, 1 mist, 2 flood
-  kProgramStop,    // M0 / M1
-  kProgramEnd,     // M2 / M30 / end of file
-  kMessage,        // text: (MSG,...) (DEBUG,...)
+  kDwell,        // value: seconds
+  kToolChange,   // tool: new tool in the spindle
+  kSpindle,      // spindle state / rpm changed
+  kCoolant,      // value: 0 off, 1 mist, 2 flood
+  kProgramStop,  // M0 / M1
+  kProgramEnd,   // M2 / M30 / end of file
+  kMessage,      // text: (MSG,...) (DEBUG,...)
 };
 
 struct Event {

@@ -65,6 +65,7 @@ void MotionOutput::fill(MotionType type, const AxisValues& end, const InterpStat
   m.center = {0.0, 0.0};
   m.feed_mode = feed.mode;
   m.inverse_time = feed.inverse_time;
+  m.spindle_sync = feed.sync;
   m.feed = 0.0;
   if (type != MotionType::kRapid) {
     bool linear_moves = false, rotary_moves = false;

@@ -14,6 +14,7 @@ struct FeedInfo {
   double raw = 0.0;   // the rate in program units as canon sees it (pure rotary: deg/min)
   FeedMode mode = FeedMode::kUnitsPerMinute;
   double inverse_time = 0.0;
+  bool sync = false;  // G33/G33.1: rate is the pitch, mm/rev
 };
 
 // Program point -> machine values under the offsets of `s`.
