@@ -247,7 +247,7 @@ void Mesher::partialLeaf(const LeafInfo& l) {
         c[a] = l.lo[a] + j;
         cube(c);
       }
-      if (topForeign && j1 < cubesA - 1) {
+      if (topForeign && !(j0 <= cubesA - 1 && cubesA - 1 <= j1)) {  // not met above
         c[a] = l.hi[a] - 1;
         cube(c);
       }
