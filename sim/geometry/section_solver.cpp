@@ -55,7 +55,7 @@ void addLineCandidates(const Quadric2& g, double nt, double ns, double k, const 
                        const bool (&live)[4], double eps, Extent& ext) {
   const double n2 = nt * nt + ns * ns;
   if (n2 <= kTiny * kTiny) return;
-  const double len = std::sqrt(n2);
+  const double len = n2 == 1.0 ? 1.0 : std::sqrt(n2);
   const double pt = -k * nt / n2;
   const double ps = -k * ns / n2;
   const double vt = -ns / len;
@@ -88,6 +88,7 @@ void addVertexCandidates(const Quadric2& g, const HalfPlane (&h)[4], const bool 
 void addStationaryCandidate(const Quadric2& g, const HalfPlane (&h)[4], const bool (&live)[4],
                             const SectionTolerance& tol, Extent& ext) {
   const double det = g.a * g.c - g.b * g.b;
+  if (det > 0.0 && g.a > 0.0) return;  // an ellipse's centre is inside, never an extreme
   if (std::abs(det) <= 1e-12 * (g.a * g.a + 2.0 * g.b * g.b + g.c * g.c)) return;
   const double t = (-g.d * g.c + g.e * g.b) / det;
   const double s = (-g.e * g.a + g.d * g.b) / det;

@@ -280,6 +280,12 @@ void SweptVolume::lineIntervals(int axis, double u, double v, std::vector<Interv
   for (const SweptBody& body : bodies_) {
     if (u < body.box.lo[i1] || u > body.box.hi[i1] || v < body.box.lo[i2] || v > body.box.hi[i2])
       continue;
+    // A body whose box along the line lies inside an interval found already cannot
+    // add to the union (consecutive steps of a 5-axis move overlap this way).
+    bool covered = false;
+    for (size_t i = first; i < out.size() && !covered; ++i)
+      covered = body.box.lo[axis] >= out[i].lo && body.box.hi[axis] <= out[i].hi;
+    if (covered) continue;
     Interval iv;
     if (bodyInterval(body, axis, u, v, iv)) out.push_back(iv);
   }
