@@ -11,8 +11,6 @@ namespace mdhd::kin {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
-// Angular slack under which an arc's end is taken to equal its start (a full circle).
-constexpr double kFullCircleEps = 1e-12;
 
 std::string where(const gcode::Motion& m) {
   return "line " + std::to_string(m.pos.line) + ": ";
@@ -50,10 +48,10 @@ JointPath::JointPath(const Kinematics& kin, const gcode::Motion& motion, double 
     angle0_ = std::atan2(v0, u0);
     double sweep = std::atan2(v1, u1) - angle0_;
     if (motion.turn > 0) {
-      if (sweep <= kFullCircleEps) sweep += kTwoPi;
+      if (sweep <= 0.0) sweep += kTwoPi;  // exact, as LinuxCNC's find_turn
       sweep += kTwoPi * (motion.turn - 1);
     } else {
-      if (sweep >= -kFullCircleEps) sweep -= kTwoPi;
+      if (sweep >= 0.0) sweep -= kTwoPi;
       sweep += kTwoPi * (motion.turn + 1);
     }
     sweep_ = sweep;
