@@ -53,6 +53,10 @@ void samplesFromSegments(std::span<const Span> segments, int first, int n,
   solid.assign(n, 0);
   crossing.assign(n > 0 ? n - 1 : 0, std::nan(""));
   for (const Span& s : segments) {
+    // A solid of zero length (a tool face lying on a grid plane, two tool
+    // intervals meeting at a vertex) has no volume; keeping its vertex would
+    // leave a cell a one-point layer no heightmap direction can hold.
+    if (s.hi - s.lo <= kZeroLength) continue;
     const int a = std::max(0, static_cast<int>(std::ceil(s.lo)) - first);
     const int b = std::min(n - 1, static_cast<int>(std::floor(s.hi)) - first);
     if (a > b) continue;  // a sliver between two vertices: below the grid's resolution

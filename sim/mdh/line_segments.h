@@ -24,6 +24,9 @@ void subtractOpen(std::span<const Span> segments, std::span<const Span> tool,
 void segmentsFromSamples(int first, std::span<const std::uint8_t> solid,
                          std::span<const double> crossing, std::vector<Span>& out);
 
+// Segments shorter than this (grid units) are dropped when encoding.
+inline constexpr double kZeroLength = 1e-9;
+
 // Encodes segments into vertex states and crossings for vertices first..first+n-1.
 void samplesFromSegments(std::span<const Span> segments, int first, int n,
                          std::vector<std::uint8_t>& solid, std::vector<double>& crossing);
