@@ -34,13 +34,14 @@ struct RecordedMotion {
   int turn;
   double feed;
   bool comp;
+  bool sync;  // G33/G33.1: feed is the pitch
 };
 
 class RecordingSink : public MotionSink {
  public:
   void motion(const Motion& m) override {
     motions.push_back({m.type, m.pos.file, m.pos.line, m.start, m.end, m.plane, m.center, m.turn,
-                       m.feed, m.comp});
+                       m.feed, m.comp, m.spindle_sync});
   }
   void event(const Event& e) override { events.push_back(e); }
   std::vector<RecordedMotion> motions;
@@ -52,10 +53,13 @@ struct OracleRun {
   std::optional<GcodeError> error;
 };
 
-// Runs program `path` with tool table `tbl` (mm_per_unit 25.4 for inch tables).
+// Runs program `path` with tool table `tbl` (mm_per_unit 25.4 for inch tables);
+// `probe_stop` is the probe model (none: probe moves run to their targets).
 inline OracleRun runOracleProgram(const std::string& path, const std::string& tbl,
-                                  double mm_per_unit) {
+                                  double mm_per_unit,
+                                  decltype(InterpreterConfig::probe_stop) probe_stop = {}) {
   InterpreterConfig config;
+  config.probe_stop = std::move(probe_stop);
   config.tools = parseToolTable(readText(tbl), mm_per_unit);
   const std::string dir = path.substr(0, path.rfind('/'));
   config.subroutine_loader = makeDirectoryLoader({dir});
