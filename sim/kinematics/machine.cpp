@@ -94,6 +94,15 @@ std::array<bool, gcode::kAxisCount> axisLetters(const Machine& machine) {
   return has;
 }
 
+unsigned axisMask(const Machine& machine) {
+  const auto has = axisLetters(machine);
+  unsigned mask = 0;
+  for (int a = 0; a < gcode::kAxisCount; ++a) {
+    if (has[static_cast<std::size_t>(a)]) mask |= 1u << a;
+  }
+  return mask;
+}
+
 std::string axisLetterString(const Machine& machine) {
   const auto has = axisLetters(machine);
   std::string s;

@@ -65,6 +65,9 @@ int jointIndex(const Machine& machine, gcode::Axis axis);
 // Which program axis letters the machine has (the interpreter rejects the others).
 std::array<bool, gcode::kAxisCount> axisLetters(const Machine& machine);
 
+// The same as a bit mask, bit i for gcode::kAxisLetters[i] (InterpreterConfig::axis_mask).
+unsigned axisMask(const Machine& machine);
+
 // The same as a string in canonical order, e.g. "XYZBC".
 std::string axisLetterString(const Machine& machine);
 

@@ -38,6 +38,8 @@ TEST(Machine, AxisLetters) {
   const auto has = axisLetters(m);
   EXPECT_TRUE(has[gcode::kA]);
   EXPECT_FALSE(has[gcode::kB]);
+  EXPECT_EQ(axisMask(m), 0b101111u);
+  EXPECT_EQ(axisMask(presets::bcHeadHead()), 0b110111u);
   EXPECT_EQ(jointIndex(m, gcode::kC), 4);
   EXPECT_EQ(jointIndex(m, gcode::kB), -1);
 }
