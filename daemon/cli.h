@@ -12,5 +12,6 @@ using Args = std::vector<std::string>;
 int runTrace(const Args& args, std::ostream& out, std::ostream& err);
 int runCheck(const Args& args, std::ostream& out, std::ostream& err);
 int runServe(const Args& args, std::ostream& out, std::ostream& err);
+int runModbusSim(const Args& args, std::ostream& out, std::ostream& err);
 
 }  // namespace mdhd::cli

@@ -10,7 +10,9 @@ constexpr const char* kUsage =
     "usage: mdhd <command> [args]\n"
     "  check JOB.json [--report REPORT.json] [--mesh RESULT.stl]  simulate a job\n"
     "  trace JOB.json                                             print the interpreted motion\n"
-    "  serve [--config FILE]                                      run the HTTP service\n";
+    "  serve [--config FILE]                                      run the HTTP service\n"
+    "  modbus-sim JOB.json --port P [--speed S] [--host H] [--map MAP.json] [--loop]\n"
+    "             [--exit-after SEC]   a simulated controller serving Modbus TCP\n";
 
 }  // namespace
 
@@ -24,6 +26,7 @@ int main(int argc, char** argv) {
   if (command == "trace") return mdhd::cli::runTrace(args, std::cout, std::cerr);
   if (command == "check") return mdhd::cli::runCheck(args, std::cout, std::cerr);
   if (command == "serve") return mdhd::cli::runServe(args, std::cout, std::cerr);
+  if (command == "modbus-sim") return mdhd::cli::runModbusSim(args, std::cout, std::cerr);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kUsage;
     return 0;

@@ -1,0 +1,176 @@
+#include "daemon/modbus_server.h"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include <modbus/modbus.h>
+
+namespace mdhd::daemon {
+namespace {
+
+constexpr int kPollMs = 50;  // how often the loop looks at the stop flag
+
+std::string systemError(const std::string& what) {
+  return what + ": " + std::strerror(errno);
+}
+
+int listenOn(const std::string& host, int port, int& bound_port) {
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  const std::string ip = host == "localhost" ? "127.0.0.1" : host;
+  if (inet_pton(AF_INET, ip.c_str(), &addr.sin_addr) != 1) {
+    throw ModbusServerError("'" + host + "' is not an IPv4 address to listen on");
+  }
+  const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) throw ModbusServerError(systemError("socket"));
+  const int one = 1;
+  setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  if (bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 || listen(fd, 16) != 0) {
+    const std::string message =
+        systemError("cannot listen on " + host + ":" + std::to_string(port));
+    close(fd);
+    throw ModbusServerError(message);
+  }
+  socklen_t len = sizeof addr;
+  getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+  bound_port = ntohs(addr.sin_port);
+  return fd;
+}
+
+}  // namespace
+
+ModbusServer::ModbusServer(ModbusServerOptions options) : options_(std::move(options)) {
+  if (options_.registers < 0 || options_.registers > 65536 || options_.coils < 0 ||
+      options_.coils > 65536) {
+    throw ModbusServerError("register or coil count out of 0..65536");
+  }
+  listen_fd_ = listenOn(options_.host, options_.port, port_);
+  // The context only frames and answers requests on the sockets handed to it.
+  ctx_ = modbus_new_tcp("127.0.0.1", port_);
+  const bool holding = options_.table == protocol::RegisterTable::kHolding;
+  mapping_ = modbus_mapping_new(options_.coils, 0, holding ? options_.registers : 0,
+                                holding ? 0 : options_.registers);
+  if (ctx_ == nullptr || mapping_ == nullptr) {
+    stop();
+    throw ModbusServerError("cannot allocate the Modbus context or register mapping");
+  }
+  modbus_set_byte_timeout(ctx_, 0, static_cast<std::uint32_t>(options_.byte_timeout_ms) * 1000);
+  shared_registers_.assign(static_cast<std::size_t>(options_.registers), 0);
+  shared_coils_.assign(static_cast<std::size_t>(options_.coils), 0);
+  thread_ = std::thread([this] { run(); });
+}
+
+ModbusServer::~ModbusServer() {
+  stop();
+}
+
+void ModbusServer::stop() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+  if (listen_fd_ >= 0) close(listen_fd_);
+  listen_fd_ = -1;
+  if (mapping_ != nullptr) modbus_mapping_free(mapping_);
+  mapping_ = nullptr;
+  if (ctx_ != nullptr) modbus_free(ctx_);
+  ctx_ = nullptr;
+}
+
+void ModbusServer::setRegisters(std::span<const std::uint16_t> values) {
+  std::lock_guard lock(mutex_);
+  const std::size_t n = std::min(values.size(), shared_registers_.size());
+  std::copy_n(values.begin(), n, shared_registers_.begin());
+  registers_changed_ = true;
+}
+
+bool ModbusServer::coil(int address) const {
+  std::lock_guard lock(mutex_);
+  return address >= 0 && static_cast<std::size_t>(address) < shared_coils_.size() &&
+         shared_coils_[static_cast<std::size_t>(address)] != 0;
+}
+
+void ModbusServer::serveClient(int fd, std::vector<int>& drop) {
+  std::uint8_t query[MODBUS_TCP_MAX_ADU_LENGTH];
+  modbus_set_socket(ctx_, fd);
+  const int rc = modbus_receive(ctx_, query);
+  if (rc == 0) return;  // not for us (libmodbus TCP answers every unit id anyway)
+  if (rc < 0) {         // closed, reset, stalled mid-frame or not Modbus: drop it
+    drop.push_back(fd);
+    return;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    if (registers_changed_) {
+      std::uint16_t* table = options_.table == protocol::RegisterTable::kHolding
+                                 ? mapping_->tab_registers
+                                 : mapping_->tab_input_registers;
+      std::copy(shared_registers_.begin(), shared_registers_.end(), table);
+      registers_changed_ = false;
+    }
+  }
+  // Sent without the lock: a slow reader cannot stall the controller's publisher.
+  const int sent = modbus_reply(ctx_, query, rc, mapping_);
+  ++requests_;
+  if (sent < 0) {
+    drop.push_back(fd);
+    return;
+  }
+  const std::uint8_t function = query[modbus_get_header_length(ctx_)];
+  if (function == MODBUS_FC_WRITE_SINGLE_COIL || function == MODBUS_FC_WRITE_MULTIPLE_COILS) {
+    std::lock_guard lock(mutex_);
+    std::copy_n(mapping_->tab_bits, shared_coils_.size(), shared_coils_.begin());
+  }
+  if (function == MODBUS_FC_WRITE_SINGLE_REGISTER ||
+      function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ||
+      function == MODBUS_FC_WRITE_AND_READ_REGISTERS || function == MODBUS_FC_MASK_WRITE_REGISTER) {
+    std::lock_guard lock(mutex_);
+    registers_changed_ = true;  // the controller's values win over a client's writes
+  }
+}
+
+void ModbusServer::run() {
+  std::vector<pollfd> fds;
+  std::vector<int> clients;
+  std::vector<int> drop;
+  while (!stop_) {
+    fds.clear();
+    fds.push_back({listen_fd_, POLLIN, 0});
+    for (int c : clients) fds.push_back({c, POLLIN, 0});
+    const int ready = poll(fds.data(), fds.size(), kPollMs);
+    if (ready <= 0) continue;  // timeout, or EINTR from a signal
+    drop.clear();
+    for (std::size_t i = 1; i < fds.size(); ++i) {
+      if (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) serveClient(fds[i].fd, drop);
+    }
+    for (int fd : drop) {
+      close(fd);
+      clients.erase(std::remove(clients.begin(), clients.end(), fd), clients.end());
+    }
+    if (fds[0].revents & POLLIN) {
+      const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+      if (fd >= 0 && static_cast<int>(clients.size()) >= options_.max_clients) {
+        close(fd);
+      } else if (fd >= 0) {
+        const int one = 1;
+        setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+        const timeval send_limit{1, 0};  // a client that never reads is dropped, not waited for
+        setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &send_limit, sizeof send_limit);
+        clients.push_back(fd);
+      }
+    }
+    clients_ = static_cast<int>(clients.size());
+  }
+  for (int fd : clients) close(fd);
+  clients_ = 0;
+}
+
+}  // namespace mdhd::daemon
