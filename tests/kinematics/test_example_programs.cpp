@@ -23,20 +23,25 @@ struct Collect : gcode::MotionSink {
   }
 };
 
-std::vector<gcode::Motion> run(const Machine& machine, const char* program, int tool,
-                               double length) {
-  std::ifstream in(std::string(MDHD_SHARED_DIR) + "/examples/" + program);
-  EXPECT_TRUE(in) << program;
-  std::stringstream text;
-  text << in.rdbuf();
+std::vector<gcode::Motion> runText(const Machine& machine, const std::string& text, int tool,
+                                   double length) {
   gcode::InterpreterConfig config;
   config.home = machine.home;
   config.tools.add({tool, length, 0.0});
   config.axis_mask = axisMask(machine);
   Collect sink;
   gcode::Interpreter interp(config, sink);
-  interp.run(gcode::makeStringSource(text.str()));
+  interp.run(gcode::makeStringSource(text));
   return sink.motions;
+}
+
+std::vector<gcode::Motion> run(const Machine& machine, const char* program, int tool,
+                               double length) {
+  std::ifstream in(std::string(MDHD_SHARED_DIR) + "/examples/" + program);
+  EXPECT_TRUE(in) << program;
+  std::stringstream text;
+  text << in.rdbuf();
+  return runText(machine, text.str(), tool, length);
 }
 
 const gcode::Motion& onLine(const std::vector<gcode::Motion>& motions, int line) {
@@ -118,6 +123,27 @@ TEST(ExamplePrograms, ContourArcsStayOnTheirCircles) {
       EXPECT_NEAR(q.tip.z, -2, 1e-12);
     }
   }
+}
+
+TEST(ExamplePrograms, TcpMoveFromTheInterpreterKeepsTheTipOnItsLine) {
+  Machine m = presets::acTrunnion();
+  m.home = {0, 0, 300, 0, 0, 0, 0, 0, 0};
+  const Kinematics kin(m);
+  const auto motions = runText(kin.machine(),
+                               "G21 G90 G17 G54\nT1 M6\nG43.4 H1\nG0 X0 Y0 Z10 A0 C0\n"
+                               "G1 X20 Y10 Z10 A-60 C90 F500\nG49\nM30\n",
+                               1, 50);
+  const gcode::Motion& move = onLine(motions, 5);
+  ASSERT_TRUE(move.tcp);
+  const JointPath path(kin, move, 50);
+  for (int i = 0; i <= 16; ++i) {
+    const double s = i / 16.0;
+    SCOPED_TRACE(s);
+    EXPECT_VEC_NEAR(kin.toolPose(path.at(s), 50).tip,
+                    glm::mix(glm::dvec3(0, 0, 10), glm::dvec3(20, 10, 10), s), 1e-9);
+  }
+  EXPECT_EQ(path.endJoints()[gcode::kA], -60);
+  EXPECT_EQ(path.endJoints()[gcode::kC], 90);
 }
 
 }  // namespace
