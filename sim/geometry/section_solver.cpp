@@ -1,6 +1,7 @@
 #include "sim/geometry/section_solver.h"
 
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 namespace mdhd::geom {
@@ -111,6 +112,31 @@ bool sectionExtent(const Quadric2& g, const HalfPlane (&h)[4], const SectionTole
     if (live[i]) addLineCandidates(g, h[i].nt, h[i].ns, h[i].k, h, live, tol.linear, ext);
   addLineCandidates(g, g.b, g.c, g.e, h, live, tol.linear, ext);  // dg/ds = 0
   addStationaryCandidate(g, h, live, tol, ext);
+  if (!(ext.lo <= ext.hi)) return false;
+  lo = ext.lo;
+  hi = ext.hi;
+  return true;
+}
+
+bool stripExtent(const Quadric2& g, double s0, double s1, const SectionTolerance& tol, double& lo,
+                 double& hi) {
+  const HalfPlane h[4] = {{0.0, -1.0, s0}, {0.0, 1.0, -s1}, {}, {}};
+  const bool live[4] = {true, true, false, false};
+  Extent ext;
+  // No corners: the extremes are on the two edges or where g = 0 runs parallel to s.
+  for (const double s : {s0, s1}) {
+    const double b = g.b * s + g.d;
+    const double c = (g.c * s + 2.0 * g.e) * s + g.f;
+    double disc = b * b - g.a * c;
+    if (disc < 0.0) {
+      if (disc < -1e-12 * (b * b + std::abs(g.a * c))) continue;
+      disc = 0.0;
+    }
+    const double q = -(b + std::copysign(std::sqrt(disc), b));
+    ext.add(q / g.a);
+    if (q != 0.0) ext.add(c / q);
+  }
+  addLineCandidates(g, g.b, g.c, g.e, h, live, tol.linear, ext);
   if (!(ext.lo <= ext.hi)) return false;
   lo = ext.lo;
   hi = ext.hi;

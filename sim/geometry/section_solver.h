@@ -35,4 +35,9 @@ struct SectionTolerance {
 bool sectionExtent(const Quadric2& g, const HalfPlane (&h)[4], const SectionTolerance& tol,
                    double& lo, double& hi);
 
+// The same for the strip s0 <= s <= s1 alone, with g.a > 0 (g bounded in t): the case
+// of a line perpendicular to the tool's axis, where the piece's z range only limits s.
+bool stripExtent(const Quadric2& g, double s0, double s1, const SectionTolerance& tol, double& lo,
+                 double& hi);
+
 }  // namespace mdhd::geom

@@ -247,7 +247,27 @@ bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double
                             {k.ze, -k.zd, z0 - p.z1}};
     double plo = 0.0;
     double phi = 0.0;
-    if (!sectionExtent(g, h, tol, plo, phi)) return Result::kMiss;
+    if (k.ze == 0.0) {
+      // The line is square to the axis: z does not change along it, so the piece's z
+      // range only limits s, and what is left is a strip (most lines of 3-axis work).
+      double s0 = 0.0;
+      double s1 = body.length;
+      if (k.zd == 0.0) {
+        if (z0 < p.z0 - tol.linear || z0 > p.z1 + tol.linear) return Result::kMiss;
+      } else {
+        const double a = (z0 - p.z1) / k.zd;
+        const double b = (z0 - p.z0) / k.zd;
+        s0 = std::max(s0, std::min(a, b));
+        s1 = std::min(s1, std::max(a, b));
+        if (s0 > s1) {
+          if (s0 > s1 + tol.linear) return Result::kMiss;
+          s0 = s1 = 0.5 * (s0 + s1);
+        }
+      }
+      if (!stripExtent(g, s0, s1, tol, plo, phi)) return Result::kMiss;
+    } else if (!sectionExtent(g, h, tol, plo, phi)) {
+      return Result::kMiss;
+    }
     lo = std::min(lo, plo + base);
     hi = std::max(hi, phi + base);
     return Result::kHit;
