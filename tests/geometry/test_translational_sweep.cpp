@@ -218,3 +218,33 @@ TEST(TranslationalSweep, BoundsContainTheSweep) {
 
 }  // namespace
 }  // namespace mdhd::geom
+
+namespace mdhd::geom {
+namespace {
+
+TEST(TranslationalSweep, DegenerateMovesStayFiniteAndConsistent) {
+  // Zero, tiny and huge moves, far from the origin, every part kind: intervals are
+  // finite, sorted and disjoint, and agree with the signed-distance reference.
+  const ToolPart parts[] = {
+      makeToolPart(testing::makeTool(ToolShape::kBull), ToolPartKind::kCutter),
+      makeToolPart(testing::makeTool(ToolShape::kDrill), ToolPartKind::kCutter),
+      makeToolPart(testing::makeTool(ToolShape::kBall), ToolPartKind::kHolder)};
+  const glm::dvec3 far{-250.0, 480.0, 120.0};
+  const glm::dvec3 w = glm::normalize(glm::dvec3(0.1, 0.0, 1.0));
+  for (const ToolPart& part : parts)
+    for (const glm::dvec3& move :
+         {glm::dvec3(0.0), glm::dvec3(1e-9, 0, 0), glm::dvec3(0, 0, 1e-7), glm::dvec3(0, 300, 0)}) {
+      const ToolPose a{far, w};
+      const SweptVolume s = SweptVolume::between(part, a, {far + move, w}, 0, 0.01);
+      ASSERT_EQ(s.translations().size(), 1u);
+      const testing::Sdf sd = sweptSdf(part, a, far + move);
+      for (double du = -12; du <= 12; du += 4.0)
+        for (double dv = -4; dv <= 60; dv += 16.0) {
+          testing::checkLine(s, sd, 2, far.x + du, far.y + dv * 0.1, 1e-6, 1e-6, 0.7);
+          testing::checkLine(s, sd, 0, far.y + du, far.z + dv, 1e-6, 1e-6, 0.7);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace mdhd::geom
