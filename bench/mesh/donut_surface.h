@@ -7,8 +7,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include <vector>
+
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+
+#include "sim/geometry/swept_volume.h"
+#include "sim/geometry/tool.h"
+#include "sim/geometry/tool_part.h"
+#include "sim/mdh/stock.h"
 
 namespace mdhd::mesh::bench {
 
@@ -45,5 +52,34 @@ struct Donut {
     return std::abs(glm::length(ps - pc) - radius);                                   // (6.1)
   }
 };
+
+// The ball tool of table 6.8 (0.3 mm, shank as thick).
+inline geom::ToolPart donutTool(const Donut& d) {
+  geom::Tool tool;
+  tool.number = 1;
+  tool.shape = geom::ToolShape::kBall;
+  tool.diameter = 2 * d.radius;
+  tool.flute_length = 6;
+  tool.length = 20;
+  tool.shank_diameter = 2 * d.radius;
+  return geom::makeToolPart(tool, geom::ToolPartKind::kCutter);
+}
+
+// The full turn as `steps` cuts (in-between steps), each a chain of
+// `substeps` straight segments along the arc.
+inline void cutDonut(mdh::Stock& stock, const Donut& d, int steps, int substeps) {
+  const geom::ToolPart part = donutTool(d);
+  stock.setToolRadius(d.radius);
+  const double turn = 2 * 3.14159265358979323846;
+  std::vector<geom::ToolPose> poses;
+  for (int k = 0; k < steps; ++k) {
+    poses.clear();
+    for (int s = 0; s <= substeps; ++s) {
+      const double phi = turn * (k + double(s) / substeps) / steps;
+      poses.push_back({d.tip(phi), d.axis(phi)});
+    }
+    stock.cut(geom::SweptVolume(part, poses), d.axis(turn * (k + 0.5) / steps));
+  }
+}
 
 }  // namespace mdhd::mesh::bench

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -291,6 +293,12 @@ bool overlaps(const LeafInfo& l, const StockView& view, const geom::Aabb& region
 }  // namespace
 
 MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& options) {
+  if (options.region) {
+    for (int a = 0; a < 3; ++a)
+      if (!(options.region->lo[a] <= options.region->hi[a]))  // also NaN
+        throw std::invalid_argument(
+            std::string("mesh: region box is empty or not a number along ") + "xyz"[a]);
+  }
   MeshStats stats;
   stats.brokenLeaves = view.brokenLeaves();
   Mesher mesher(view, sink, stats);

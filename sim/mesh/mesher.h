@@ -40,6 +40,8 @@ struct MeshStats {
   int brokenLeaves = 0;  // see StockView::brokenLeaves
 };
 
+// Streams the mesh into `sink`. Throws std::invalid_argument for a region
+// whose min exceeds its max or holds a NaN.
 MeshStats meshStock(const mdh::Stock& stock, MeshSink& sink, const MeshOptions& options = {});
 MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& options = {});
 

@@ -136,6 +136,11 @@ TEST(Mesher, RegionMeshesOnlyTheCellsItOverlaps) {
   };
   EXPECT_GT(inside(part), 100);
   EXPECT_EQ(inside(part), inside(all));
+  MeshOptions bad;
+  bad.region = geom::Aabb{{0, 0, 0}, {1, std::nan(""), 1}};
+  EXPECT_THROW(meshOf(stock, bad), std::invalid_argument);
+  bad.region = geom::Aabb{{0, 2, 0}, {1, 1, 1}};
+  EXPECT_THROW(meshOf(stock, bad), std::invalid_argument);
   MeshOptions outside;
   outside.region = geom::Aabb{{20, 20, 20}, {21, 21, 21}};
   EXPECT_EQ(meshOf(stock, outside).stats.triangles, 0);
