@@ -1,6 +1,8 @@
 // Figures for the swept volumes: lineIntervals calls per second over every grid line
-// (0.1 mm, three directions) of one step's box, per tool shape, for a translational
-// and a 5-axis step, against a plain ray-sphere intersection over the same lines.
+// (0.1 mm, three directions) of the lowest 6 mm of one step's box, per tool shape, for
+// a translational and a 5-axis step (tolerance 0.01 mm), against a plain ray-sphere
+// intersection over the lines of a 6 mm sphere's box; "lines" is how many lines one
+// step's box holds, "steps/s" how many such swept volumes are built per second.
 //
 //   bench_swept_volume [--seconds S]   (S per measurement, default 0.5)
 #include <chrono>
@@ -123,31 +125,46 @@ int main(int argc, char** argv) {
   }
 
   // Baseline: a 3 mm sphere, the lines of its box, one ray-sphere solve each.
-  const glm::dvec3 c(0.03, 0.07, 3.01);
+  const glm::dvec3 centre(0.03, 0.07, 3.01);
   const double r = 3.0;
-  const std::vector<Line> sphereLines = gridLines(Aabb{c - r, c + r});
+  const std::vector<Line> sphereLines = gridLines(Aabb{centre - r, centre + r});
   const Rate base = measure(sphereLines, seconds, [&](const Line& l, std::vector<Interval>& out) {
     const int i1 = (l.axis + 1) % 3;
     const int i2 = (l.axis + 2) % 3;
-    const double du = l.u - c[i1];
-    const double dv = l.v - c[i2];
+    const double du = l.u - centre[i1];
+    const double dv = l.v - centre[i2];
     const double h2 = r * r - du * du - dv * dv;
     if (h2 <= 0) return;
     const double h = std::sqrt(h2);
-    out.push_back({c[l.axis] - h, c[l.axis] + h});
+    out.push_back({centre[l.axis] - h, centre[l.axis] + h});
   });
-  std::printf("grid %.2f mm, 6 mm tools, %.2f s per figure\n", kGrid, seconds);
-  std::printf("%-34s %12s %8s %10s %8s\n", "case", "calls/s", "hit", "vs sphere", "steps/s");
-  std::printf("%-34s %12.3g %7.0f%% %10s %8s\n", "baseline ray-sphere", base.callsPerSecond,
-              100 * base.hitFraction, "1.00", "-");
+  std::printf("grid %.2f mm, 6 mm tools (flutes 18), %.2f s per figure\n", kGrid, seconds);
+  std::printf("%-36s %10s %8s %6s %9s %7s %9s\n", "case", "calls/s", "ns/call", "hit", "vs sphere",
+              "lines", "steps/s");
+  std::printf("%-36s %10.3g %8.1f %5.0f%% %9s %7zu %9s\n", "baseline ray-sphere",
+              base.callsPerSecond, 1e9 / base.callsPerSecond, 100 * base.hitFraction, "1",
+              sphereLines.size(), "-");
 
   const ToolPose start{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
   const ToolPose moved{{1.0, 0.4, -0.2}, {0.0, 0.0, 1.0}};
   const double tilt = 2.0 * std::acos(-1.0) / 180.0;  // 2 degrees in this step
   const ToolPose turned{{1.0, 0.4, -0.2}, {std::sin(tilt), 0.0, std::cos(tilt)}};
-  for (ToolShape shape :
-       {ToolShape::kBall, ToolShape::kFlat, ToolShape::kBull, ToolShape::kDrill}) {
-    const ToolPart part = makeToolPart(benchTool(shape), ToolPartKind::kCutter);
+  struct Case {
+    ToolShape shape;
+    double cornerTolerance;
+  };
+  const Case cases[] = {{ToolShape::kBall, kDefaultCornerTolerance},
+                        {ToolShape::kFlat, kDefaultCornerTolerance},
+                        {ToolShape::kBull, kDefaultCornerTolerance},
+                        {ToolShape::kBull, 0.01},
+                        {ToolShape::kDrill, kDefaultCornerTolerance}};
+  for (const Case& c : cases) {
+    const ToolPart part =
+        makeToolPart(benchTool(c.shape), ToolPartKind::kCutter, c.cornerTolerance);
+    const std::string shape =
+        std::string(toolShapeName(c.shape)) +
+        (c.shape == ToolShape::kBull ? "(" + std::to_string(part.bodies[0].pieces.size()) + " pcs)"
+                                     : "");
     for (const ToolPose* end : {&moved, &turned}) {
       const SweptVolume s = SweptVolume::between(part, start, *end, 0, 0.01);
       const std::vector<Line> lines = gridLines(lowerBox(s));
@@ -155,11 +172,12 @@ int main(int argc, char** argv) {
         s.lineIntervals(l.axis, l.u, l.v, out);
       });
       const std::string name =
-          std::string(toolShapeName(shape)) +
-          (end == &moved ? " translation 1.1 mm" : " 5-axis 2 deg, ") +
-          (end == &moved ? "" : std::to_string(s.translations().size()) + " sub");
-      std::printf("%-34s %12.3g %7.0f%% %10.2f %8.3g\n", name.c_str(), rate.callsPerSecond,
-                  100 * rate.hitFraction, rate.callsPerSecond / base.callsPerSecond,
+          shape + (end == &moved
+                       ? " move 1.1 mm"
+                       : " 5-axis 2 deg " + std::to_string(s.translations().size()) + " sub");
+      std::printf("%-36s %10.3g %8.1f %5.0f%% %9.3f %7zu %9.3g\n", name.c_str(),
+                  rate.callsPerSecond, 1e9 / rate.callsPerSecond, 100 * rate.hitFraction,
+                  rate.callsPerSecond / base.callsPerSecond, lines.size(),
                   buildRate(part, start, *end, seconds / 4));
     }
   }
