@@ -328,15 +328,22 @@ double ExpressionReader::readFunction(Cursor& c) {
   return result;
 }
 
+// EXISTS[#<name>]: 1 if the named parameter is defined. For a numbered one
+// LinuxCNC answers whether the number is in range.
 double ExpressionReader::readExists(Cursor& c) {
-  const std::size_t open = c.index();
   c.advance();  // '['
-  if (c.peek() != '#' || c.peekAt(1) != '<')
-    c.fail("EXISTS needs a named parameter: EXISTS[#<name>]");
-  const ParameterRef ref = readParameterRef(c);
-  if (c.peek() != ']') c.failAt(open, "Unclosed expression (missing ']')");
+  if (c.peek() != '#') c.fail("Expected # reading parameter");
+  double result = 0.0;
+  if (c.peekAt(1) == '<') {
+    const ParameterRef ref = readParameterRef(c);
+    result = params_.findNamed(ref.name).has_value() ? 1.0 : 0.0;
+  } else {
+    c.advance();
+    result = ParameterStore::validNumber(readIntegerValue(c)) ? 1.0 : 0.0;
+  }
+  if (c.peek() != ']') c.fail("Expected ] reading bracketed parameter");
   c.advance();
-  return params_.findNamed(ref.name).has_value() ? 1.0 : 0.0;
+  return result;
 }
 
 ParameterRef ExpressionReader::readParameterRef(Cursor& c) {

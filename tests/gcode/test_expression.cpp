@@ -88,10 +88,15 @@ TEST(Expression, Functions) {
 }
 
 TEST(Expression, Exists) {
-  const auto blocks = readAll("#<a> = 1\nX[EXISTS[#<a>]] Y[EXISTS[#<b>]]\n");
+  const auto blocks =
+      readAll("#<a> = 1\nX[EXISTS[#<a>]] Y[EXISTS[#<b>]] Z[EXISTS[#5601]] A[EXISTS[#5602]]\n");
   ASSERT_EQ(blocks.size(), 1u);
   EXPECT_EQ(blocks[0].words[0].value, 1.0);
   EXPECT_EQ(blocks[0].words[1].value, 0.0);
+  EXPECT_EQ(blocks[0].words[2].value, 1.0);  // numbered: is the number in range
+  EXPECT_EQ(blocks[0].words[3].value, 0.0);
+  EXPECT_STREQ(readError("X[EXISTS[1]]").what(), "Expected # reading parameter");
+  EXPECT_STREQ(readError("X[EXISTS[#<a> + 1]]").what(), "Expected ] reading bracketed parameter");
 }
 
 struct ErrorCase {

@@ -328,6 +328,11 @@ TEST(OWord, LabelsAreIntegerValuesOrNames) {
             std::vector<double>{5.0});
 }
 
+TEST(OWord, KeywordsIgnoreCaseAndBlanks) {
+  EXPECT_EQ(xs("#1=0\nO100 WHILE [#1 LT 2]\nX#1\n#1=[#1+1]\nO 1 0 0 End While\nX9\n"),
+            (std::vector<double>{0.0, 1.0, 9.0}));
+}
+
 TEST(OWord, CommentsBetweenCallArguments) {
   EXPECT_EQ(xs("o1 sub\nX[#1 + #2]\no1 endsub\no1 call [1] (x) [2] (y)\n"),
             std::vector<double>{3.0});
