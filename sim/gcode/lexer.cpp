@@ -6,8 +6,9 @@
 namespace mdhd::gcode {
 namespace {
 
+// LinuxCNC drops spaces, tabs and carriage returns outside comments.
 bool isBlank(char c) {
-  return c == ' ' || c == '\t';
+  return c == ' ' || c == '\t' || c == '\r';
 }
 bool isDigit(char c) {
   return c >= '0' && c <= '9';
@@ -19,8 +20,13 @@ char lower(char c) {
 }  // namespace
 
 void normalizeLine(std::string_view raw, LineText& out, const LineRef& ref) {
-  out.code.clear();
-  out.columns.clear();
+  // Written through raw pointers into buffers sized for the whole line, then
+  // trimmed: this runs once per line and is the reader's hottest loop.
+  out.code.resize(raw.size());
+  out.columns.resize(raw.size());
+  char* code = out.code.data();
+  int* columns = out.columns.data();
+  std::size_t n = 0;
   out.end_column = static_cast<int>(raw.size()) + 1;
   int comment_start = 0;  // column of the open '(' (0: not in a comment)
   for (std::size_t i = 0; i < raw.size(); ++i) {
@@ -29,19 +35,20 @@ void normalizeLine(std::string_view raw, LineText& out, const LineRef& ref) {
     if (comment_start != 0) {
       if (c == '(') throw GcodeError(ref.at(column), "Nested comment found");
       if (c == ')') comment_start = 0;
-      out.code.push_back(c);
-      out.columns.push_back(column);
+    } else if (isBlank(c)) {
       continue;
-    }
-    if (isBlank(c)) continue;
-    if (c == ';') {
+    } else if (c == ';') {
       out.end_column = column;
       break;
+    } else if (c == '(') {
+      comment_start = column;
     }
-    if (c == '(') comment_start = column;
-    out.code.push_back(lower(c));
-    out.columns.push_back(column);
+    code[n] = comment_start != 0 || c == ')' ? c : lower(c);
+    columns[n] = column;
+    ++n;
   }
+  out.code.resize(n);
+  out.columns.resize(n);
   if (comment_start != 0) throw GcodeError(ref.at(comment_start), "Unclosed comment found");
 }
 
