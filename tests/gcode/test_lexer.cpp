@@ -24,6 +24,10 @@ TEST(Lexer, RemovesBlanksAndLowersOutsideComments) {
   EXPECT_EQ(t.end_column, 32);
 }
 
+TEST(Lexer, CarriageReturnIsABlank) {
+  EXPECT_EQ(normalize("G0\rX1 (a\rb)").code, "g0x1(a\rb)");
+}
+
 TEST(Lexer, SemicolonEndsTheLine) {
   const LineText t = normalize("G1 X2 ; (not a comment ( at all");
   EXPECT_EQ(t.code, "g1x2");
