@@ -16,6 +16,20 @@ std::string where(const gcode::Motion& m) {
   return "line " + std::to_string(m.pos.line) + ": ";
 }
 
+// Non-finite values would pass every comparison of the limit checks unnoticed.
+void checkFinite(const gcode::Motion& m, double length) {
+  for (int a = 0; a < gcode::kAxisCount; ++a) {
+    if (!std::isfinite(m.start[a]) || !std::isfinite(m.end[a])) {
+      throw KinematicsError(where(m) + "non-finite value of axis " + gcode::kAxisLetters[a]);
+    }
+  }
+  if (m.type == gcode::MotionType::kArc &&
+      (!std::isfinite(m.center[0]) || !std::isfinite(m.center[1]))) {
+    throw KinematicsError(where(m) + "non-finite arc centre");
+  }
+  if (!std::isfinite(length)) throw KinematicsError(where(m) + "non-finite tool length");
+}
+
 }  // namespace
 
 JointPath::JointPath(const Kinematics& kin, const gcode::Motion& motion, double tool_length)
@@ -25,6 +39,7 @@ JointPath::JointPath(const Kinematics& kin, const gcode::Motion& motion, double 
       length_(tool_length),
       tcp_(motion.tcp),
       arc_(motion.type == gcode::MotionType::kArc) {
+  checkFinite(motion, tool_length);
   if (arc_) {
     switch (motion.plane) {
       case gcode::Plane::kXY:

@@ -21,6 +21,7 @@ struct Point {
 
 // Violation of one joint's range by the value v, or 0 when inside: +1 above, -1 below.
 int side(const Limits& l, double v) {
+  if (std::isnan(v)) return 1;  // never inside: a NaN must not pass as in range
   if (v > l.max + kLimitSlack) return 1;
   if (v < l.min - kLimitSlack) return -1;
   return 0;

@@ -129,6 +129,22 @@ TEST(JointPath, ArcWithTurnZeroIsAnError) {
   }
 }
 
+TEST(JointPath, NonFiniteInputIsAnError) {
+  const Kinematics kin(presets::threeAxisMill());
+  gcode::Motion m = line(xyz(0, 0, 0), xyz(1, std::nan(""), 0));
+  m.pos.line = 4;
+  try {
+    JointPath p(kin, m, 0);
+    FAIL();
+  } catch (const KinematicsError& e) {
+    EXPECT_STREQ(e.what(), "line 4: non-finite value of axis Y");
+  }
+  m.end = xyz(1, 1, 1);
+  EXPECT_THROW(JointPath(kin, m, INFINITY), KinematicsError);
+  m = arc(gcode::Plane::kXY, xyz(10, 0, 0), xyz(0, 10, 0), 0, INFINITY, 1);
+  EXPECT_THROW(JointPath(kin, m, 0), KinematicsError);
+}
+
 TEST(JointPath, TcpTipStaysOnTheStraightLine) {
   const Kinematics kin(presets::acTrunnion());
   // G43.4: tip from (0, 0, 10) to (20, 10, 10) in W while A goes 0 -> -60 and C 0 -> 90.

@@ -49,6 +49,13 @@ TEST(Limits, VectorReportsFirstJointValueAndExcess) {
   EXPECT_EQ(z->excess, 30);
 }
 
+TEST(Limits, NanIsNeverInRange) {
+  const Kinematics kin(exampleMill());
+  const auto v = checkLimits(kin, xyz(0, std::nan(""), 0));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->axis, gcode::kY);
+}
+
 TEST(Limits, RotaryWithoutLimitsTurnsFreely) {
   const Kinematics kin(presets::acTrunnion());
   JointValues q = xyz(0, 0, 0);
