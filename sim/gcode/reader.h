@@ -48,7 +48,13 @@ class Reader {
   Reader& operator=(const Reader&) = delete;
 
   // The next block to execute; false at the end of the program (end of the
-  // file or a closing '%'). Throws GcodeError for bad input.
+  // file or a closing '%'). Throws GcodeError for bad input. Every executed
+  // line with a word, a comment or an N number is a block; blank lines,
+  // O-word lines and lines that only set parameters are not (their settings
+  // take effect before the next block is returned). Block::comments holds
+  // every comment of the line (leading blanks dropped, as LinuxCNC); like
+  // LinuxCNC only the last one can be a (MSG,) / (DEBUG,) / (PRINT,).
+  // Reuses out's vectors and strings: pass the same Block every time.
   bool next(Block& out);
 
   std::uint64_t steps() const { return steps_; }
