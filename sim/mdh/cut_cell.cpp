@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "sim/mdh/direct_splits.h"
+#include "sim/mdh/fast_cut.h"
 #include "sim/mdh/good_bad_map.h"
 #include "sim/mdh/isolation_splits.h"
 #include "sim/mdh/rng.h"
@@ -24,28 +25,6 @@ Direction guessDirection(const glm::dvec3& t) {
     if (std::abs(t[a]) > std::abs(t[axis])) axis = a;
   if (t[axis] == 0.0) return Direction{2, 1};
   return Direction{axis, t[axis] > 0 ? 1 : -1};
-}
-
-// The columns (and their one-column ring, whose edges change too) the tool can reach.
-GridBox fastRegion(const Cell& cell, const GridBox& touched, int axis) {
-  GridBox sub = cell.box.intersect(touched);
-  for (int a = 0; a < 3; ++a) {
-    if (a == axis) {
-      sub.lo[a] = cell.box.lo[a];
-      sub.hi[a] = cell.box.hi[a];
-    } else {
-      sub.lo[a] = std::max(cell.box.lo[a], sub.lo[a] - 1);
-      sub.hi[a] = std::min(cell.box.hi[a], sub.hi[a] + 1);
-    }
-  }
-  return sub;
-}
-
-double regionVolume(const ThreeMap& map, const GridBox& sub) {
-  const int u = map.uAxis(), v = map.vAxis();
-  const GridBox& box = map.box();
-  return map.squaresVolume(sub.lo[u] - box.lo[u], sub.hi[u] - box.lo[u], sub.lo[v] - box.lo[v],
-                           sub.hi[v] - box.lo[v]);
 }
 
 void setVolume(Cell& cell, double volume, const CutContext& ctx) {
@@ -68,21 +47,14 @@ void normalize(Cell& cell) {
 }
 
 // The common case: the cell's own direction still holds the cut.
-bool fastCut(Cell& cell, const CutContext& ctx) {
-  ThreeMap& map = *cell.map;
-  const Direction d = map.direction();
-  const GridBox sub = fastRegion(cell, ctx.cache.touched(), d.axis);
-  SampleGrid g = SampleGrid::decode(map, sub);
-  g.applyCut(d.axis, ctx.cache);
-  if (!g.changed()) return true;
-  const int u = map.uAxis(), v = map.vAxis();
-  for (int cv = sub.lo[v]; cv <= sub.hi[v]; ++cv)
-    for (int cu = sub.lo[u]; cu <= sub.hi[u]; ++cu)
-      if (!g.columnValid(d, cu, cv)) return false;
-  const double before = regionVolume(map, sub);
-  spliceInto(map, g);
-  setVolume(cell, cell.volume - before + regionVolume(map, sub), ctx);
-  ctx.counters.touched = true;
+bool fastCutCell(Cell& cell, const CutContext& ctx) {
+  double delta = 0.0;
+  const FastCut r = fastCut(*cell.map, ctx.cache, delta);
+  if (r == FastCut::kOverhang) return false;
+  if (r == FastCut::kDone) {
+    setVolume(cell, cell.volume + delta, ctx);
+    ctx.counters.touched = true;
+  }
   return true;
 }
 
@@ -233,13 +205,11 @@ void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
   if (cell.state == CellState::kSolid) {
     // Probe first: most solid cells under the tool's box lose nothing.
     const Direction d = guessDirection(ctx.toolDirection);
-    SampleGrid probe = SampleGrid::solid(fastRegion(cell, ctx.cache.touched(), d.axis));
-    probe.applyCut(d.axis, ctx.cache);
-    if (!probe.changed()) return;
+    if (!toolReachesSolid(cell.box, d.axis, ctx.cache)) return;
     cell.map = std::make_unique<ThreeMap>(cell.box, d, ctx.threeWay);
     cell.state = CellState::kPartial;
   }
-  if (!fastCut(cell, ctx)) slowCut(cell, ctx, fresh);
+  if (!fastCutCell(cell, ctx)) slowCut(cell, ctx, fresh);
   if (cell.state == CellState::kInner) {
     for (auto& child : cell.child) {
       cutLeaf(*child, ctx, false);

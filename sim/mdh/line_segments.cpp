@@ -1,5 +1,6 @@
 #include "sim/mdh/line_segments.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mdhd::mdh {
@@ -64,6 +65,31 @@ void samplesFromSegments(std::span<const Span> segments, int first, int n,
     if (a > 0) crossing[a - 1] = s.lo;
     if (b < n - 1) crossing[b] = s.hi;
   }
+}
+
+double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k,
+                            std::span<const Span> tool, std::vector<Span>& pieces) {
+  Span before{};
+  bool any = true;
+  if (std::isnan(oc)) oc = k + 0.5;
+  if (o0 && o1)
+    before = {double(k), double(k + 1)};
+  else if (o0)
+    before = {double(k), oc};
+  else if (o1)
+    before = {oc, double(k + 1)};
+  else
+    any = false;
+  if (any)
+    subtractOpen(std::span<const Span>(&before, 1), tool, pieces);
+  else
+    pieces.clear();
+  for (const Span& s : pieces) {
+    if (n0 && !n1 && s.lo <= k) return std::clamp(s.hi, double(k), double(k + 1));
+    if (!n0 && n1 && s.hi >= k + 1) return std::clamp(s.lo, double(k), double(k + 1));
+  }
+  if (o0 != o1) return std::clamp(oc, double(k), double(k + 1));
+  return k + 0.5;
 }
 
 }  // namespace mdhd::mdh

@@ -31,4 +31,13 @@ inline constexpr double kZeroLength = 1e-9;
 void samplesFromSegments(std::span<const Span> segments, int first, int n,
                          std::vector<std::uint8_t>& solid, std::vector<double>& crossing);
 
+// Where the surface crosses the grid edge [k, k+1] of a line after a cut,
+// given the end states before (o0, o1) and after (n0, n1), the crossing
+// before (oc, if o0 != o1) and the tool's open intervals along the line.
+// The end states come from another family of lines; when this line's
+// intervals disagree (a tangency within rounding) the old crossing or the
+// edge midpoint is kept. `pieces` is scratch space.
+double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k,
+                            std::span<const Span> tool, std::vector<Span>& pieces);
+
 }  // namespace mdhd::mdh

@@ -19,35 +19,6 @@ std::array<int, 3> vertex(int a, int level, int cu, int cv) {
   return p;
 }
 
-// Where the surface crosses edge [k, k+1] of a secondary line after the cut,
-// given the states before (o0, o1) and after (n0, n1) and the old crossing.
-double edgeCrossing(bool o0, bool o1, double oc, bool n0, bool n1, int k,
-                    std::span<const Span> tool, std::vector<Span>& pieces) {
-  Span before{};
-  bool any = true;
-  if (std::isnan(oc)) oc = k + 0.5;
-  if (o0 && o1)
-    before = {double(k), double(k + 1)};
-  else if (o0)
-    before = {double(k), oc};
-  else if (o1)
-    before = {oc, double(k + 1)};
-  else
-    any = false;
-  if (any)
-    subtractOpen(std::span<const Span>(&before, 1), tool, pieces);
-  else
-    pieces.clear();
-  for (const Span& s : pieces) {
-    if (n0 && !n1 && s.lo <= k) return std::clamp(s.hi, double(k), double(k + 1));
-    if (!n0 && n1 && s.hi >= k + 1) return std::clamp(s.lo, double(k), double(k + 1));
-  }
-  // The primary axis removed a vertex this line's intervals did not (a
-  // tangency within rounding): keep the old crossing or take the midpoint.
-  if (o0 != o1) return std::clamp(oc, double(k), double(k + 1));
-  return k + 0.5;
-}
-
 }  // namespace
 
 SampleGrid::SampleGrid(const GridBox& box) : box_(box) {
@@ -160,7 +131,7 @@ void SampleGrid::applyCut(int primary, const IntervalCache& cache) {
             continue;
           }
           if (tool.empty() && o0 == n0 && o1 == n1) continue;
-          const double nc = edgeCrossing(o0, o1, c, n0, n1, box_.lo[x] + k, tool, pieces);
+          const double nc = edgeCrossingAfterCut(o0, o1, c, n0, n1, box_.lo[x] + k, tool, pieces);
           if (!(nc == c)) changed_ = true;
           c = nc;
         }
@@ -204,61 +175,6 @@ double SampleGrid::columnHeight(Direction d, int cu, int cv) const {
   return std::clamp(c, std::nextafter(double(k - 1), kInf), double(k));
 }
 
-namespace {
-
-// One row of embedded heights rebuilt: edges whose two columns lie in g take
-// their crossings from g, the others keep theirs.
-void rebuildRow(ThreeMap& map, int family, int r, const std::vector<double>& newHeights,
-                const GridBox& gbox, const SampleGrid& g) {
-  const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
-  const int x = family == 0 ? u : v, y = family == 0 ? v : u;
-  const GridBox& box = map.box();
-  const int absR = box.lo[y] + r;
-  const bool rowInG = absR >= gbox.lo[y] && absR <= gbox.hi[y];
-  const int gnu = gbox.points(u);
-  auto newHeight = [&](int e) {  // e: column index along x within the row
-    const int absE = box.lo[x] + e;
-    const int cu = family == 0 ? absE : absR, cv = family == 0 ? absR : absE;
-    if (rowInG && absE >= gbox.lo[x] && absE <= gbox.hi[x])
-      return newHeights[(cv - gbox.lo[v]) * gnu + (cu - gbox.lo[u])];
-    return map.rowHeight(family, r, e);
-  };
-  const std::vector<double>& src = map.row(family, r);
-  std::vector<double> dst;
-  dst.reserve(src.size() + 8);
-  std::size_t pos = 0;
-  for (int e = 0; e < map.edgesInRow(family); ++e) {
-    const double oh0 = map.rowHeight(family, r, e), oh1 = map.rowHeight(family, r, e + 1);
-    const double nh0 = newHeight(e), nh1 = newHeight(e + 1);
-    int ofirst = 0, ocount = 0, nfirst = 0, ncount = 0;
-    map.straddle(oh0, oh1, ofirst, ocount);
-    map.straddle(nh0, nh1, nfirst, ncount);
-    const int c = box.lo[x] + e;
-    const bool inG = rowInG && c >= gbox.lo[x] && c + 1 <= gbox.hi[x];
-    for (int i = 0; i < ncount; ++i) {
-      const int k = nfirst + i;
-      double value = std::nan("");
-      if (inG) {
-        std::array<int, 3> p{};
-        p[a] = k;
-        p[x] = c;
-        p[y] = absR;
-        value = g.crossing(x, g.index(p));
-      }
-      if (std::isnan(value)) {
-        value = (k >= ofirst && k < ofirst + ocount) ? src[pos + (k - ofirst)]
-                                                     : map.interpolatedCrossing(nh0, nh1, c, k);
-      }
-      dst.push_back(value);
-    }
-    pos += ocount;
-  }
-  dst.shrink_to_fit();
-  map.row(family, r) = std::move(dst);
-}
-
-}  // namespace
-
 ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay) {
   ThreeMap map(g.box(), d, threeWay);
   const int a = d.axis, u = map.uAxis(), v = map.vAxis();
@@ -289,27 +205,6 @@ ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay) {
     }
   }
   return map;
-}
-
-void spliceInto(ThreeMap& map, const SampleGrid& g) {
-  const Direction d = map.direction();
-  const int u = map.uAxis(), v = map.vAxis();
-  const GridBox& gbox = g.box();
-  const GridBox& box = map.box();
-  std::vector<double> heights;
-  heights.reserve(static_cast<std::size_t>(gbox.points(u)) * gbox.points(v));
-  for (int cv = gbox.lo[v]; cv <= gbox.hi[v]; ++cv)
-    for (int cu = gbox.lo[u]; cu <= gbox.hi[u]; ++cu) heights.push_back(g.columnHeight(d, cu, cv));
-  if (map.threeWay()) {
-    for (int cv = gbox.lo[v]; cv <= gbox.hi[v]; ++cv)
-      rebuildRow(map, 0, cv - box.lo[v], heights, gbox, g);
-    for (int cu = gbox.lo[u]; cu <= gbox.hi[u]; ++cu)
-      rebuildRow(map, 1, cu - box.lo[u], heights, gbox, g);
-  }
-  std::size_t i = 0;
-  for (int cv = gbox.lo[v]; cv <= gbox.hi[v]; ++cv)
-    for (int cu = gbox.lo[u]; cu <= gbox.hi[u]; ++cu)
-      map.setHeight(cu - box.lo[u], cv - box.lo[v], heights[i++]);
 }
 
 }  // namespace mdhd::mdh

@@ -66,8 +66,5 @@ class SampleGrid {
 // Packs a whole cell (g covers the cell's box) into a heightmap in direction d;
 // every line along d.axis must be valid for d.
 ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay);
-// Writes back the part of `map` that g covers after a cut that kept the map's
-// direction valid (g spans the full cell along the direction axis).
-void spliceInto(ThreeMap& map, const SampleGrid& g);
 
 }  // namespace mdhd::mdh

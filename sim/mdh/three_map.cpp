@@ -78,29 +78,35 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
   const double lo = box_.lo[a], hi = box_.hi[a];
   auto levelLength = [&](int k) { return dir_.sign > 0 ? k - lo : hi - k; };
   std::vector<std::pair<double, double>> pts;
-  // Edge integrals of one row, edges [e0, e1).
+  // Edge integrals of one row, edges [e0, e1). Solid counts are computed
+  // once per column; the walk up to e0 only sums how many crossings to skip.
+  std::vector<int> counts;
   auto rowIntegrals = [&](int family, int r, int e0, int e1, std::vector<double>& out) {
     out.assign(e1 - e0, 0.0);
+    counts.resize(e1 + 1);
+    for (int e = 0; e <= e1; ++e) counts[e] = solidCount(rowHeight(family, r, e));
     std::size_t pos = 0;
+    for (int e = 0; e < e0; ++e) pos += std::abs(counts[e] - counts[e + 1]);
     const int base = box_.lo[family == 0 ? uAxis() : vAxis()];
-    for (int e = 0; e < e1; ++e) {
+    for (int e = e0; e < e1; ++e) {
       const double h0 = rowHeight(family, r, e), h1 = rowHeight(family, r, e + 1);
-      int first = 0, count = 0;
-      straddle(h0, h1, first, count);
-      if (e >= e0) {
-        pts.clear();
-        for (int i = 0; threeWay_ && i < count; ++i)
-          pts.emplace_back(std::clamp(rows_[family][r][pos + i] - (base + e), 0.0, 1.0),
-                           levelLength(first + i));
-        // Crossings at the same spot form a vertical step: walk it from the
-        // first column's height towards the second's.
-        const double len0 = columnLength(h0), len1 = columnLength(h1);
+      const int f0 = counts[e], f1 = counts[e + 1];
+      const int count = std::abs(f0 - f1);
+      const int first =
+          dir_.sign > 0 ? box_.lo[a] + std::min(f0, f1) : box_.hi[a] - std::max(f0, f1) + 1;
+      const double len0 = columnLength(h0), len1 = columnLength(h1);
+      pts.clear();
+      for (int i = 0; threeWay_ && i < count; ++i)
+        pts.emplace_back(std::clamp(rows_[family][r][pos + i] - (base + e), 0.0, 1.0),
+                         levelLength(first + i));
+      // Crossings at the same spot form a vertical step: walk it from the
+      // first column's height towards the second's.
+      if (pts.size() > 1)
         std::sort(pts.begin(), pts.end(), [&](const auto& x, const auto& y) {
           if (x.first != y.first) return x.first < y.first;
           return len0 > len1 ? x.second > y.second : x.second < y.second;
         });
-        out[e - e0] = edgeIntegral(len0, len1, pts);
-      }
+      out[e - e0] = edgeIntegral(len0, len1, pts);
       pos += count;
     }
   };

@@ -1,0 +1,155 @@
+#include "sim/mdh/fast_cut.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "sim/mdh/line_segments.h"
+
+namespace mdhd::mdh {
+
+namespace {
+
+struct ColumnChange {
+  int iu, iv;
+  double height;
+};
+
+// The column's height after the cut; false if it no longer is one solid run
+// from the heightmap's base face.
+bool cutColumn(const ThreeMap& m, double h, std::span<const Span> tool, std::vector<Span>& before,
+               std::vector<Span>& after, double& out) {
+  const int a = m.axis();
+  const double lo = m.box().lo[a], hi = m.box().hi[a];
+  const bool up = m.direction().sign > 0;
+  before.clear();
+  if (m.solidCount(h) > 0)
+    before.push_back(up ? Span{lo, std::min(h, hi)} : Span{std::max(h, lo), hi});
+  subtractOpen(before, tool, after);
+  const Span* run = nullptr;
+  int runs = 0;
+  for (const Span& s : after) {
+    if (s.hi - s.lo <= kZeroLength || std::ceil(s.lo) > std::floor(s.hi)) continue;  // no vertex
+    run = &s;
+    ++runs;
+  }
+  if (runs == 0) {
+    out = m.emptyHeight();
+    return true;
+  }
+  if (runs > 1 || (up ? run->lo > lo : run->hi < hi)) return false;
+  out = up ? run->hi : run->lo;
+  return true;
+}
+
+// Rebuilds one row of embedded heights; `heights` are the row's new parent
+// heights, `changed` marks the columns that moved.
+void rebuildRow(ThreeMap& m, int family, int r, const std::vector<double>& heights,
+                const std::vector<std::uint8_t>& changed, const IntervalCache& cache,
+                std::vector<Span>& pieces) {
+  const int a = m.axis();
+  const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
+  const GridBox& box = m.box();
+  const std::vector<double>& src = m.row(family, r);
+  std::vector<double> dst;
+  dst.reserve(src.size() + 16);
+  std::size_t pos = 0;
+  std::array<int, 3> p{};
+  p[y] = box.lo[y] + r;
+  for (int e = 0; e < m.edgesInRow(family); ++e) {
+    const double oh0 = m.rowHeight(family, r, e), oh1 = m.rowHeight(family, r, e + 1);
+    const double nh0 = heights[e], nh1 = heights[e + 1];
+    int ofirst = 0, ocount = 0, nfirst = 0, ncount = 0;
+    m.straddle(oh0, oh1, ofirst, ocount);
+    m.straddle(nh0, nh1, nfirst, ncount);
+    const bool touched = changed[e] || changed[e + 1];
+    for (int i = 0; i < ncount; ++i) {
+      const int k = nfirst + i;
+      const bool hadOne = k >= ofirst && k < ofirst + ocount;
+      double value = hadOne ? src[pos + (k - ofirst)] : std::nan("");
+      if (touched) {
+        p[a] = k;
+        const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
+        value = edgeCrossingAfterCut(m.solidAt(oh0, k), m.solidAt(oh1, k), value, m.solidAt(nh0, k),
+                                     m.solidAt(nh1, k), box.lo[x] + e, tool, pieces);
+      }
+      dst.push_back(value);
+    }
+    pos += ocount;
+  }
+  dst.shrink_to_fit();
+  m.row(family, r) = std::move(dst);
+}
+
+}  // namespace
+
+FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) {
+  volumeDelta = 0.0;
+  const GridBox region = map.box().intersect(cache.touched());
+  if (region.empty()) return FastCut::kUnchanged;
+  const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
+  const GridBox& box = map.box();
+  std::vector<ColumnChange> changes;
+  std::vector<Span> before, after;
+  for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
+    for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
+      const auto tool = cache.line(a, cu, cv);
+      if (tool.empty()) continue;
+      const int iu = cu - box.lo[u], iv = cv - box.lo[v];
+      const double h = map.height(iu, iv);
+      double nh = 0.0;
+      if (!cutColumn(map, h, tool, before, after, nh)) return FastCut::kOverhang;
+      if (!(nh == h)) changes.push_back({iu, iv, nh});
+    }
+  if (changes.empty()) return FastCut::kUnchanged;
+  int u0 = map.columnsU(), u1 = -1, v0 = map.columnsV(), v1 = -1;
+  for (const ColumnChange& c : changes) {
+    u0 = std::min(u0, c.iu), u1 = std::max(u1, c.iu);
+    v0 = std::min(v0, c.iv), v1 = std::max(v1, c.iv);
+  }
+  // The squares around the changed columns are all the volume that moves.
+  u0 = std::max(0, u0 - 1), v0 = std::max(0, v0 - 1);
+  u1 = std::min(map.columnsU() - 1, u1 + 1), v1 = std::min(map.columnsV() - 1, v1 + 1);
+  const double volumeBefore = map.squaresVolume(u0, u1, v0, v1);
+  if (map.threeWay()) {
+    std::vector<Span> pieces;
+    std::vector<double> heights;
+    std::vector<std::uint8_t> changed;
+    for (int family = 0; family < 2; ++family) {
+      std::vector<int> rows;
+      for (const ColumnChange& c : changes) rows.push_back(family == 0 ? c.iv : c.iu);
+      std::sort(rows.begin(), rows.end());
+      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+      for (int r : rows) {
+        const int n = map.edgesInRow(family) + 1;
+        heights.resize(n);
+        changed.assign(n, 0);
+        for (int e = 0; e < n; ++e) heights[e] = map.rowHeight(family, r, e);
+        for (const ColumnChange& c : changes) {
+          if ((family == 0 ? c.iv : c.iu) != r) continue;
+          const int e = family == 0 ? c.iu : c.iv;
+          heights[e] = c.height;
+          changed[e] = 1;
+        }
+        rebuildRow(map, family, r, heights, changed, cache, pieces);
+      }
+    }
+  }
+  for (const ColumnChange& c : changes) map.setHeight(c.iu, c.iv, c.height);
+  volumeDelta = map.squaresVolume(u0, u1, v0, v1) - volumeBefore;
+  return FastCut::kDone;
+}
+
+bool toolReachesSolid(const GridBox& box, int axis, const IntervalCache& cache) {
+  const GridBox region = box.intersect(cache.touched());
+  if (region.empty()) return false;
+  const int u = axisU(axis), v = axisV(axis);
+  const double lo = box.lo[axis], hi = box.hi[axis];
+  for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
+    for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu)
+      for (const Span& t : cache.line(axis, cu, cv))
+        if (std::min(t.hi, hi) - std::max(t.lo, lo) > kZeroLength) return true;
+  return false;
+}
+
+}  // namespace mdhd::mdh
