@@ -137,6 +137,37 @@ TEST(ReaderOracle, EveryProgramReadsAsLinuxCnc) {
   EXPECT_EQ(checked_records, 9896);  // all motion, comment and message records of the oracle
 }
 
+// RESULTS.tsv (file, rc, records, motions, error): every program rs274
+// rejected is either one of the reader's rejections, with rs274's message,
+// or one the reader accepts (the interpreter's business).
+TEST(ReaderOracle, ResultsTableAgrees) {
+  std::ifstream in(kOracle / "RESULTS.tsv");
+  std::string row;
+  std::getline(in, row);  // header
+  int rows = 0;
+  int reader_rejections = 0;
+  while (std::getline(in, row)) {
+    std::istringstream fields(row);
+    std::string file, rc, records, motions, error;
+    std::getline(fields, file, '\t');
+    std::getline(fields, rc, '\t');
+    std::getline(fields, records, '\t');
+    std::getline(fields, motions, '\t');
+    std::getline(fields, error);
+    ++rows;
+    const auto rejection = kReaderRejections.find(file);
+    if (rejection != kReaderRejections.end()) {
+      ++reader_rejections;
+      EXPECT_EQ(rc, "2") << file;
+      EXPECT_EQ(error, rejection->second.message) << file;
+      continue;
+    }
+    EXPECT_NO_THROW(readProgram(kOracle / file)) << file << " (rs274: " << error << ")";
+  }
+  EXPECT_EQ(rows, 38);
+  EXPECT_EQ(reader_rejections, 2);
+}
+
 TEST(ReaderOracle, OwordProgramValues) {
   // 15_oword_params_expr.ngc: the values LinuxCNC moved to (see its .jsonl).
   const auto blocks = readProgram(kOracle / "programs/15_oword_params_expr.ngc");
