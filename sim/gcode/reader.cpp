@@ -216,6 +216,9 @@ void Reader::handleComments(Block& out) {
       out.messages.push_back(std::move(expanded));
   } else if (startsWithNoCase(text, "print,")) {
     out.prints.push_back(substituteParameters(text.substr(6), column));
+  } else if (startsWithNoCase(text, "abort,")) {
+    // LinuxCNC stops the program with the expanded text as the error.
+    throw GcodeError({*ref_.file, ref_.line, column}, substituteParameters(text.substr(6), column));
   }
 }
 

@@ -113,6 +113,13 @@ TEST(Reader, DebugParameterSubstitution) {
   }
 }
 
+TEST(Reader, AbortCommentStopsWithItsText) {
+  const GcodeError e = readError("#1 = 3\nG0 X1 (ABORT,probe failed at #1)\nG0 X2\n");
+  EXPECT_STREQ(e.what(), "probe failed at 3.000000");
+  EXPECT_EQ(e.line(), 2);
+  EXPECT_EQ(e.column(), 7);
+}
+
 TEST(Reader, AssignmentsTakeEffectAfterTheLine) {
   const auto blocks = readAll(
       "#1 = 5\n"
