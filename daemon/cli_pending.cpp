@@ -5,12 +5,6 @@
 
 namespace mdhd::cli {
 
-int runCheck(const Args&, std::ostream&, std::ostream& err) {
-  err << "mdhd check: not available yet: the simulation pipeline is being built "
-         "(see the README's status section). Use 'mdhd trace JOB.json' for the motion.\n";
-  return 2;
-}
-
 int runServe(const Args&, std::ostream&, std::ostream& err) {
   err << "mdhd serve: not available yet: the HTTP service is being built "
          "(see the README's status section).\n";

@@ -1,0 +1,42 @@
+#pragma once
+// One check of a job, end to end and without the command line's I/O: the job
+// (validated against the job schema, then the strict codec), the interpreter
+// driving a check::Simulation, and every failure turned into a report with
+// status "error" that says what and where. The CLI and the service share it.
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "daemon/job_files.h"
+#include "sim/check/report.h"
+#include "sim/check/simulation.h"
+
+namespace mdhd::cli {
+
+struct CheckControls {
+  // Called after each motion: fraction of the program's lines done, motions so far.
+  std::function<void(double fraction, std::int64_t moves)> progress;
+  const std::atomic<bool>* cancel = nullptr;  // raise to stop within a step
+  // Called with the final stock of a run that completed (meshing).
+  std::function<void(const mdh::Stock&)> finished;
+};
+
+// The simulation's options from the job's.
+check::SimulationOptions simulationOptions(const protocol::JobOptions& options);
+
+// Loads a job file: the JSON schema first (errors name the JSON path), then the
+// strict codec and the machine and program files. Throws protocol::FieldError.
+LoadedJob loadCheckedJobFile(const std::filesystem::path& path);
+
+// Runs a loaded job. Program and motion errors come back as a report with status
+// error and the place (line, column, block text); check::Cancelled is rethrown.
+check::Report runCheckJob(const LoadedJob& loaded, const CheckControls& controls = {});
+
+// A report that only says why the job could not be used.
+check::Report errorReport(check::ReportError error);
+
+// Text of line `line` (1-based) of the job's main program, or "" (read streaming).
+std::string programLine(const LoadedJob& loaded, int line);
+
+}  // namespace mdhd::cli

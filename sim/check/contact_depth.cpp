@@ -1,0 +1,131 @@
+#include "sim/check/contact_depth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "sim/geometry/signed_distance.h"
+
+namespace mdhd::check {
+namespace {
+
+constexpr int kGoldenIterations = 28;
+constexpr double kInvPhi = 0.6180339887498949;
+
+// The point in the tool frame of a pose: bodies of revolution only need (r, 0, z).
+glm::dvec3 toolFrame(const glm::dvec3& p, const glm::dvec3& tip, const glm::dvec3& axis) {
+  const glm::dvec3 d = p - tip;
+  const double z = glm::dot(d, axis);
+  const glm::dvec3 radial = d - z * axis;
+  return {std::sqrt(glm::dot(radial, radial)), 0.0, z};
+}
+
+double bodyAlong(const geom::ConvexBody& body, const geom::Translation& tr, const glm::dvec3& p) {
+  const glm::dvec3 move = tr.to - tr.from;
+  auto f = [&](double t) {
+    return geom::signedDistance(body, toolFrame(p, tr.from + t * move, tr.axis));
+  };
+  if (glm::dot(move, move) == 0.0) return f(0.0);
+  double a = 0.0, b = 1.0;
+  double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int i = 0; i < kGoldenIterations; ++i) {
+    if (fc < fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - kInvPhi * (b - a);
+      fc = f(c);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + kInvPhi * (b - a);
+      fd = f(d);
+    }
+  }
+  return std::min({fc, fd, f(0.0), f(1.0)});
+}
+
+void overlaps(const std::vector<geom::Interval>& a, const std::vector<geom::Interval>& b,
+              std::vector<geom::Interval>& out) {
+  out.clear();
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    const double lo = std::max(a[i].lo, b[j].lo), hi = std::min(a[i].hi, b[j].hi);
+    if (lo < hi) out.push_back({lo, hi});
+    if (a[i].hi < b[j].hi)
+      ++i;
+    else
+      ++j;
+  }
+}
+
+}  // namespace
+
+geom::Aabb intersect(const geom::Aabb& a, const geom::Aabb& b) {
+  return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)};
+}
+
+bool isEmpty(const geom::Aabb& b) {
+  return !(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z);
+}
+
+double sweptSignedDistance(const geom::SweptVolume& sweep, const geom::ToolPart& part,
+                           const glm::dvec3& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const geom::Translation& tr : sweep.translations())
+    for (const geom::ConvexBody& body : part.bodies) best = std::min(best, bodyAlong(body, tr, p));
+  return best;
+}
+
+Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& part,
+                        const geom::Aabb& within, const LineGrid& grid,
+                        const MaterialLine& material) {
+  Penetration out;
+  const geom::Aabb box = intersect(sweep.bounds(), within);
+  if (isEmpty(box) || part.empty()) return out;
+  const int x0 =
+      std::max(grid.ix_min, static_cast<int>(std::ceil((box.lo.x - grid.origin_x) / grid.h)));
+  const int x1 =
+      std::min(grid.ix_max, static_cast<int>(std::floor((box.hi.x - grid.origin_x) / grid.h)));
+  const int y0 =
+      std::max(grid.iy_min, static_cast<int>(std::ceil((box.lo.y - grid.origin_y) / grid.h)));
+  const int y1 =
+      std::min(grid.iy_max, static_cast<int>(std::floor((box.hi.y - grid.origin_y) / grid.h)));
+  if (x0 > x1 || y0 > y1) return out;
+  const int stride =
+      std::max(1, (std::max(x1 - x0, y1 - y0) + kMaxDepthLinesPerAxis) / kMaxDepthLinesPerAxis);
+  std::vector<geom::Interval> mat, tool, both;
+  for (int iy = y0; iy <= y1; iy += stride) {
+    for (int ix = x0; ix <= x1; ix += stride) {
+      const double x = grid.origin_x + ix * grid.h, y = grid.origin_y + iy * grid.h;
+      tool.clear();
+      sweep.lineIntervals(2, x, y, tool);
+      if (tool.empty()) continue;
+      mat.clear();
+      material(ix, iy, x, y, mat);
+      overlaps(mat, tool, both);
+      for (const geom::Interval& o : both) {
+        const double lo = std::max(o.lo, box.lo.z), hi = std::min(o.hi, box.hi.z);
+        if (!(hi > lo)) continue;
+        out.max_overlap = std::max(out.max_overlap, hi - lo);
+        const int n = std::clamp(static_cast<int>(std::ceil((hi - lo) / grid.h)) + 1, 2,
+                                 kMaxDepthSamplesPerOverlap);
+        for (int k = 0; k < n; ++k) {
+          const glm::dvec3 p{x, y, lo + (hi - lo) * k / (n - 1)};
+          const double depth = -sweptSignedDistance(sweep, part, p);
+          if (depth > out.depth) {
+            out.depth = depth;
+            out.deepest = p;
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace mdhd::check

@@ -1,0 +1,120 @@
+#include "sim/check/overhang_area.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace mdhd::check {
+namespace {
+
+// Where a line leaves or enters solid, in grid units: `lower` ends have solid
+// after them along the axis (outward normal -axis), `upper` ends before them.
+struct Crossings {
+  std::vector<double> lower;
+  std::vector<double> upper;
+};
+
+std::optional<double> nearest(const std::vector<double>& values, double c, double within) {
+  std::optional<double> best;
+  for (double v : values)
+    if (std::abs(v - c) <= within && (!best || std::abs(v - c) < std::abs(*best - c))) best = v;
+  return best;
+}
+
+// Slope of the surface through crossing c across the neighbouring lines (grid units):
+// nullopt when neither neighbour has a matching crossing (steeper than this axis sees).
+std::optional<double> slope(const std::vector<double>* before, const std::vector<double>* after,
+                            double c) {
+  constexpr double kWithin = 1.5;
+  const auto b = before != nullptr ? nearest(*before, c, kWithin) : std::nullopt;
+  const auto a = after != nullptr ? nearest(*after, c, kWithin) : std::nullopt;
+  if (a && b) return 0.5 * (*a - *b);
+  if (a) return *a - c;
+  if (b) return c - *b;
+  return std::nullopt;
+}
+
+// The box of grid vertices that leaves other than +z heightmaps cover, grown by one.
+std::optional<mdh::GridBox> overhangRegion(const mdh::Stock& stock) {
+  std::optional<mdh::GridBox> box;
+  stock.forEachLeaf([&](const mdh::LeafView& leaf) {
+    if (leaf.map == nullptr || leaf.map->direction() == mdh::Direction{2, 1}) return;
+    if (!box) {
+      box = leaf.box;
+      return;
+    }
+    for (int a = 0; a < 3; ++a) {
+      box->lo[a] = std::min(box->lo[a], leaf.box.lo[a]);
+      box->hi[a] = std::max(box->hi[a], leaf.box.hi[a]);
+    }
+  });
+  if (box) {
+    const auto& cubes = stock.grid().cubes;
+    for (int a = 0; a < 3; ++a) {
+      box->lo[a] = std::max(0, box->lo[a] - 1);
+      box->hi[a] = std::min(cubes[a], box->hi[a] + 1);
+    }
+  }
+  return box;
+}
+
+double axisArea(const mdh::Stock& stock, const mdh::GridBox& box, int axis) {
+  const mdh::GridSpec& g = stock.grid();
+  const int u = mdh::axisU(axis), v = mdh::axisV(axis);
+  const int nu = box.points(u), nv = box.points(v);
+  std::vector<Crossings> lines(static_cast<std::size_t>(nu) * nv);
+  std::vector<geom::Interval> spans;
+  const double lo = box.lo[axis], hi = box.hi[axis];
+  for (int jv = 0; jv < nv; ++jv)
+    for (int ju = 0; ju < nu; ++ju) {
+      stock.solidIntervals(axis, box.lo[u] + ju, box.lo[v] + jv, spans);
+      Crossings& c = lines[static_cast<std::size_t>(jv) * nu + ju];
+      for (const geom::Interval& s : spans) {
+        const double a = g.toGrid(axis, s.lo), b = g.toGrid(axis, s.hi);
+        // The stock box's own faces are raw material, not machined surface.
+        if (a > 1e-9 && a >= lo && a <= hi) c.lower.push_back(a);
+        if (b < g.cubes[axis] - 1e-9 && b >= lo && b <= hi) c.upper.push_back(b);
+      }
+    }
+  auto at = [&](int ju, int jv) -> const Crossings* {
+    if (ju < 0 || jv < 0 || ju >= nu || jv >= nv) return nullptr;
+    return &lines[static_cast<std::size_t>(jv) * nu + ju];
+  };
+  double area = 0.0;
+  for (int jv = 0; jv < nv; ++jv)
+    for (int ju = 0; ju < nu; ++ju) {
+      const Crossings& here = lines[static_cast<std::size_t>(jv) * nu + ju];
+      for (int end = 0; end < 2; ++end) {
+        auto pick = [end](const Crossings* c) {
+          return c != nullptr ? (end == 0 ? &c->lower : &c->upper) : nullptr;
+        };
+        for (double c : end == 0 ? here.lower : here.upper) {
+          const auto su = slope(pick(at(ju - 1, jv)), pick(at(ju + 1, jv)), c);
+          const auto sv = slope(pick(at(ju, jv - 1)), pick(at(ju, jv + 1)), c);
+          // Another axis sees this surface at a better angle: it counts it there.
+          if (!su || !sv || std::abs(*su) > 1.0 || std::abs(*sv) > 1.0) continue;
+          const double norm = std::sqrt(1.0 + *su * *su + *sv * *sv);
+          // Outward normal: -axis at a lower end (solid after it), +axis at an upper end.
+          const double sign = end == 0 ? -1.0 : 1.0;
+          double n[3];
+          n[axis] = sign / norm;
+          n[u] = -sign * *su / norm;
+          n[v] = -sign * *sv / norm;
+          if (n[2] < kOverhangNormalZ) area += norm;
+        }
+      }
+    }
+  return area * g.h * g.h;
+}
+
+}  // namespace
+
+double overhangArea(const mdh::Stock& stock) {
+  const auto box = overhangRegion(stock);
+  if (!box) return 0.0;
+  double area = 0.0;
+  for (int axis = 0; axis < 3; ++axis) area += axisArea(stock, *box, axis);
+  return area;
+}
+
+}  // namespace mdhd::check

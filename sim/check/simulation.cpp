@@ -1,0 +1,360 @@
+#include "sim/check/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "sim/check/contact_depth.h"
+#include "sim/check/move_time.h"
+#include "sim/check/overhang_area.h"
+#include "sim/geometry/pose_interpolation.h"
+#include "sim/geometry/swept_volume.h"
+#include "sim/kinematics/joint_path.h"
+#include "sim/kinematics/limits.h"
+
+namespace mdhd::check {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kBisections = 12;  // first contact within 1/4096 of a step
+
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// Adds the time spent in a scope to a counter.
+class ScopeTimer {
+ public:
+  explicit ScopeTimer(double& ms) : ms_(ms), start_(Clock::now()) {}
+  ~ScopeTimer() { ms_ += msSince(start_); }
+  ScopeTimer(const ScopeTimer&) = delete;
+  ScopeTimer& operator=(const ScopeTimer&) = delete;
+
+ private:
+  double& ms_;
+  Clock::time_point start_;
+};
+
+mdh::StockOptions stockOptions(const SimulationOptions& o) {
+  mdh::StockOptions s;
+  s.density = o.density;
+  s.three_way = o.three_way;
+  s.ruleset = o.ruleset;
+  s.seed = o.seed;
+  s.threads = o.threads;
+  return s;
+}
+
+ToolUse& toolUse(RunStats& stats, int tool) {
+  for (ToolUse& u : stats.tools)
+    if (u.tool == tool) return u;
+  stats.tools.push_back({tool, 0.0, 0.0});
+  return stats.tools.back();
+}
+
+}  // namespace
+
+// One in-between step of one motion, with the sweeps of the tool's parts over it.
+struct Simulation::Step {
+  const gcode::Motion& m;
+  const kin::JointPath& path;
+  const ToolParts& parts;
+  const StepPose& a;
+  const StepPose& b;
+  geom::SweptVolume cutter;
+  std::optional<geom::SweptVolume> shank;
+  std::optional<geom::SweptVolume> holder;
+};
+
+Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>& tools,
+                       const geom::Aabb& stock,
+                       std::vector<std::unique_ptr<geom::LineSolid>> fixtures,
+                       SimulationOptions options)
+    : kin_(kin),
+      fixtures_(std::move(fixtures)),
+      options_(std::move(options)),
+      started_(Clock::now()) {
+  for (const geom::Tool& t : tools) {
+    ToolParts p{t, geom::makeToolPart(t, geom::ToolPartKind::kCutter),
+                geom::makeToolPart(t, geom::ToolPartKind::kShank),
+                geom::makeToolPart(t, geom::ToolPartKind::kHolder), 0.0};
+    for (const geom::ToolPart* part : {&p.cutter, &p.shank, &p.holder})
+      if (!part->empty()) p.reach = std::max(p.reach, part->reach());
+    tools_.emplace(t.number, std::move(p));
+  }
+  stock_ = std::make_unique<mdh::Stock>(stock, stockOptions(options_));
+  contact_tolerance_ =
+      options_.contact_tolerance >= 0.0 ? options_.contact_tolerance : 0.5 / options_.density;
+  stats_.stock_volume_mm3 = stock_->volume();
+}
+
+Simulation::~Simulation() = default;
+
+const Simulation::ToolParts* Simulation::partsFor(int tool) {
+  const auto it = tools_.find(tool);
+  if (it == tools_.end()) return nullptr;
+  if (tool != current_tool_) {
+    current_tool_ = tool;
+    stock_->setToolRadius(it->second.tool.radius());
+  }
+  return &it->second;
+}
+
+void Simulation::checkCancel() const {
+  if (cancel_ != nullptr && cancel_->load(std::memory_order_relaxed)) throw Cancelled();
+}
+
+void Simulation::motion(const gcode::Motion& m) {
+  checkCancel();
+  switch (m.type) {
+    case gcode::MotionType::kRapid:
+      ++stats_.moves.rapid;
+      break;
+    case gcode::MotionType::kFeed:
+      ++stats_.moves.feed;
+      break;
+    case gcode::MotionType::kArc:
+      ++stats_.moves.arc;
+      break;
+  }
+  const ToolParts* parts = partsFor(m.tool);
+  try {
+    const kin::JointPath path(kin_, m, parts != nullptr ? parts->tool.length : 0.0);
+    checkLimits(m, path);
+    const std::vector<StepPose> poses =
+        stepPoses(path, options_.steps, options_.tolerance, parts != nullptr ? parts->reach : 0.0);
+    bool removed = false;
+    for (std::size_t i = 1; i < poses.size(); ++i) {
+      stats_.path_length += glm::length(poses[i].pose.tip - poses[i - 1].pose.tip);
+      runStep(m, path, parts, poses[i - 1], poses[i], removed);
+    }
+    const double seconds = moveSeconds(m, moveLength(m, path), kin_.machine());
+    stats_.cycle_time_s += seconds;
+    if (removed && m.type != gcode::MotionType::kRapid && parts != nullptr) {
+      toolUse(stats_, m.tool).cutting_time_s += seconds;
+    }
+  } catch (const kin::KinematicsError& e) {
+    throw gcode::GcodeError(m.pos, std::string("cannot simulate this move: ") + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw gcode::GcodeError(m.pos, std::string("cannot simulate this move: ") + e.what());
+  }
+  if (progress_) progress_(m.pos, stats_.moves.total());
+}
+
+void Simulation::event(const gcode::Event& e) {
+  if (e.type == gcode::EventType::kDwell && e.value > 0.0) stats_.cycle_time_s += e.value;
+}
+
+void Simulation::checkLimits(const gcode::Motion& m, const kin::JointPath& path) {
+  if (const auto v = kin::checkLimits(path)) {
+    const EpisodeKey key{CollisionType::kAxisLimit, ToolPartName::kNone, -1, v->joint};
+    episodes_.touch(key, v->excess, m.pos.line, [&] {
+      Collision c;
+      c.type = CollisionType::kAxisLimit;
+      c.file = m.pos.file;
+      c.line = m.pos.line;
+      if (m.block_text != nullptr) c.block = *m.block_text;
+      c.tool = m.tool;
+      c.joints = path.at(v->first_s);
+      c.position = toolPoseAt(path, c.joints).tip;
+      c.axis = kin_.machine().joints[static_cast<std::size_t>(v->joint)].name;
+      return c;
+    });
+  }
+  episodes_.endStep(true);
+}
+
+geom::SweptVolume Simulation::sweep(const Step& step, const geom::ToolPart& part, double f) const {
+  const geom::ToolPose end =
+      f >= 1.0 ? step.b.pose : geom::interpolatePose(step.a.pose, step.b.pose, f);
+  const double tol = part.kind == geom::ToolPartKind::kCutter
+                         ? options_.tolerance
+                         : std::max(options_.tolerance, contact_tolerance_);
+  return geom::SweptVolume::between(part, step.a.pose, end, options_.steps > 0 ? 1 : 0, tol);
+}
+
+Collision Simulation::entry(const Step& step, CollisionType type, double f) const {
+  Collision c;
+  c.type = type;
+  c.file = step.m.pos.file;
+  c.line = step.m.pos.line;
+  if (step.m.block_text != nullptr) c.block = *step.m.block_text;
+  c.tool = step.m.tool;
+  c.joints = step.path.at(step.a.s + f * (step.b.s - step.a.s));
+  c.position = f >= 1.0 ? step.b.pose.tip : geom::interpolatePose(step.a.pose, step.b.pose, f).tip;
+  return c;
+}
+
+double Simulation::firstContact(
+    const Step& step, const geom::ToolPart& part,
+    const std::function<bool(const geom::SweptVolume&)>& touches) const {
+  if (touches(geom::SweptVolume::at(part, step.a.pose))) return 0.0;
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (touches(sweep(step, part, mid)) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+void Simulation::runStep(const gcode::Motion& m, const kin::JointPath& path, const ToolParts* parts,
+                         const StepPose& a, const StepPose& b, bool& removed) {
+  checkCancel();
+  ++stats_.steps;
+  if (parts != nullptr) {
+    Step step{m, path, *parts, a, b, geom::SweptVolume::at(parts->cutter, a.pose), {}, {}};
+    step.cutter = sweep(step, parts->cutter, 1.0);
+    if (!parts->shank.empty()) step.shank = sweep(step, parts->shank, 1.0);
+    if (!parts->holder.empty()) step.holder = sweep(step, parts->holder, 1.0);
+    cutterStep(step, removed);
+    stockContacts(step);
+    if (!fixtures_.empty()) fixtureContacts(step);
+  }
+  episodes_.endStep(false);
+}
+
+namespace {
+
+LineGrid stockLines(const mdh::Stock& stock) {
+  const mdh::GridSpec& g = stock.grid();
+  return {g.origin.x, g.origin.y, g.h, 0, g.cubes[0], 0, g.cubes[1]};
+}
+
+}  // namespace
+
+void Simulation::cutterStep(const Step& step, bool& removed) {
+  const gcode::Motion& m = step.m;
+  const bool rapid = m.type == gcode::MotionType::kRapid;
+  if (rapid || m.spindle == gcode::SpindleState::kOff) {
+    // The removal itself is the collision: measure it before the material is gone.
+    ScopeTimer timer(timing_.probe_ms);
+    if (stock_->probe(step.cutter, contact_tolerance_).touched) {
+      const auto material = [this](int ix, int iy, double, double,
+                                   std::vector<geom::Interval>& out) {
+        stock_->solidIntervals(2, ix, iy, out);
+      };
+      const geom::Aabb all{glm::dvec3(-INFINITY), glm::dvec3(INFINITY)};
+      const Penetration p =
+          penetration(step.cutter, step.parts.cutter, all, stockLines(*stock_), material);
+      if (p.depth > contact_tolerance_) {
+        const CollisionType type =
+            rapid ? CollisionType::kRapidIntoStock : CollisionType::kSpindleOffCut;
+        episodes_.touch({type, ToolPartName::kCutter, -1, -1}, p.depth, m.pos.line, [&] {
+          const double f = firstContact(step, step.parts.cutter, [&](const geom::SweptVolume& s) {
+            return stock_->probe(s, contact_tolerance_).touched;
+          });
+          Collision c = entry(step, type, f);
+          c.part = ToolPartName::kCutter;
+          return c;
+        });
+      }
+    }
+  }
+  ScopeTimer timer(timing_.cut_ms);
+  glm::dvec3 dir = step.a.pose.axis + step.b.pose.axis;
+  dir = glm::dot(dir, dir) > 1e-12 ? glm::normalize(dir) : step.b.pose.axis;
+  const mdh::CutResult r = stock_->cut(step.cutter, dir);
+  if (r.removed_volume > 0.0) {
+    removed = true;
+    toolUse(stats_, m.tool).removed_volume_mm3 += r.removed_volume;
+  }
+  if (r.overhang_events > 0) {
+    overhang_.events += r.overhang_events;
+    if (!overhang_.first_line) overhang_.first_line = m.pos.line;
+  }
+}
+
+void Simulation::stockContacts(const Step& step) {
+  ScopeTimer timer(timing_.probe_ms);
+  const auto material = [this](int ix, int iy, double, double, std::vector<geom::Interval>& out) {
+    stock_->solidIntervals(2, ix, iy, out);
+  };
+  const geom::Aabb all{glm::dvec3(-INFINITY), glm::dvec3(INFINITY)};
+  const struct {
+    const std::optional<geom::SweptVolume>& sweep;
+    const geom::ToolPart& part;
+    CollisionType type;
+    ToolPartName name;
+  } checks[] = {
+      {step.shank, step.parts.shank, CollisionType::kShankContact, ToolPartName::kShank},
+      {step.holder, step.parts.holder, CollisionType::kHolderContact, ToolPartName::kHolder},
+  };
+  for (const auto& check : checks) {
+    if (!check.sweep || !stock_->probe(*check.sweep, contact_tolerance_).touched) continue;
+    const Penetration p = penetration(*check.sweep, check.part, all, stockLines(*stock_), material);
+    if (!(p.depth > contact_tolerance_)) continue;
+    episodes_.touch({check.type, check.name, -1, -1}, p.depth, step.m.pos.line, [&] {
+      const double f = firstContact(step, check.part, [&](const geom::SweptVolume& s) {
+        return stock_->probe(s, contact_tolerance_).touched;
+      });
+      Collision c = entry(step, check.type, f);
+      c.part = check.name;
+      return c;
+    });
+  }
+}
+
+void Simulation::fixtureContacts(const Step& step) {
+  ScopeTimer timer(timing_.probe_ms);
+  const mdh::GridSpec& g = stock_->grid();
+  const LineGrid lines{g.origin.x, g.origin.y, g.h, -(1 << 28), 1 << 28, -(1 << 28), 1 << 28};
+  const struct {
+    const geom::SweptVolume* sweep;
+    const geom::ToolPart& part;
+    ToolPartName name;
+  } parts[] = {
+      {&step.cutter, step.parts.cutter, ToolPartName::kCutter},
+      {step.shank ? &*step.shank : nullptr, step.parts.shank, ToolPartName::kShank},
+      {step.holder ? &*step.holder : nullptr, step.parts.holder, ToolPartName::kHolder},
+  };
+  for (std::size_t i = 0; i < fixtures_.size(); ++i) {
+    const geom::LineSolid& fixture = *fixtures_[i];
+    const geom::Aabb fb = fixture.bounds();
+    const auto material = [&fixture](int, int, double x, double y,
+                                     std::vector<geom::Interval>& out) {
+      fixture.lineIntervals(2, x, y, out);
+    };
+    for (const auto& part : parts) {
+      if (part.sweep == nullptr || part.part.empty() ||
+          isEmpty(intersect(part.sweep->bounds(), fb)))
+        continue;
+      const Penetration p = penetration(*part.sweep, part.part, fb, lines, material);
+      if (!(p.depth > contact_tolerance_)) continue;
+      const EpisodeKey key{CollisionType::kFixtureContact, part.name, static_cast<int>(i), -1};
+      episodes_.touch(key, p.depth, step.m.pos.line, [&] {
+        const double f = firstContact(step, part.part, [&](const geom::SweptVolume& s) {
+          return penetration(s, part.part, fb, lines, material).depth > contact_tolerance_;
+        });
+        Collision c = entry(step, CollisionType::kFixtureContact, f);
+        c.part = part.name;
+        c.fixture = static_cast<int>(i);
+        return c;
+      });
+    }
+  }
+}
+
+Report Simulation::finish(std::int64_t blocks) {
+  Report report;
+  const Clock::time_point t0 = Clock::now();
+  stats_.blocks = blocks;
+  stats_.final_volume_mm3 = stock_->volume();
+  stats_.removed_volume_mm3 = stats_.stock_volume_mm3 - stats_.final_volume_mm3;
+  report.mdh = stock_->stats();
+  const auto& d = report.mdh.directions;
+  overhang_.cells_not_plus_z = d[0] + d[1] + d[2] + d[3] + d[5];
+  overhang_.area_mm2 = overhangArea(*stock_);
+  report.collisions = episodes_.collisions();
+  report.status = report.collisions.empty() ? Status::kClean : Status::kCollisions;
+  report.stats = stats_;
+  report.overhang = overhang_;
+  timing_.finish_ms += msSince(t0);
+  timing_.total_ms = msSince(started_);
+  report.timing = timing_;
+  report.grid_spacing = stock_->grid().h;
+  return report;
+}
+
+}  // namespace mdhd::check

@@ -1,0 +1,116 @@
+#pragma once
+// The pre-run check as one streaming MotionSink: every interpreted motion becomes
+// a joint path, the path tool poses in W, the poses swept volumes of cutter, shank
+// and holder; the cutter's sweep cuts the stock, the others probe it and the
+// fixtures. Out come collision episodes and statistics (a Report). Nothing of a
+// motion is kept after it, so a program of any length runs in bounded memory.
+//
+//   Simulation sim(kin, tools, stock_box, fixtures, options);
+//   gcode::Interpreter(config, sim).run(source);
+//   Report report = sim.finish(interp.blocksExecuted());
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "sim/check/episodes.h"
+#include "sim/check/motion_steps.h"
+#include "sim/check/report.h"
+#include "sim/geometry/line_solid.h"
+#include "sim/geometry/swept_volume.h"
+#include "sim/geometry/tool.h"
+#include "sim/geometry/tool_part.h"
+#include "sim/kinematics/kinematics.h"
+#include "sim/mdh/stock.h"
+
+namespace mdhd::check {
+
+struct SimulationOptions {
+  double density = 10.0;  // grid points per mm
+  int steps = 0;          // pieces per move; 0: adaptive to `tolerance`
+  double tolerance = 0.01;
+  std::vector<mdh::Rule> ruleset{mdh::Rule::kFEFS_FFS, mdh::Rule::kCTD, mdh::Rule::kSPT,
+                                 mdh::Rule::kRS};
+  std::uint64_t seed = 1;
+  bool three_way = true;
+  double contact_tolerance = -1.0;  // < 0: half the grid spacing
+  int threads = 1;                  // stock cutting threads (0: hardware concurrency)
+};
+
+// Thrown out of motion() when the cancel flag is raised; the interpreter passes it on.
+class Cancelled : public std::runtime_error {
+ public:
+  Cancelled() : std::runtime_error("check cancelled") {}
+};
+
+class Simulation final : public gcode::MotionSink {
+ public:
+  // `kin` must outlive the simulation. Throws std::invalid_argument for a stock the
+  // grid cannot hold or a tool that is not buildable.
+  Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>& tools,
+             const geom::Aabb& stock, std::vector<std::unique_ptr<geom::LineSolid>> fixtures,
+             SimulationOptions options);
+  ~Simulation() override;
+
+  // Throws gcode::GcodeError at the motion's place when it cannot be simulated (a
+  // singular tool-centre-point pose, a half-turn of the tool axis within one fixed
+  // step), Cancelled when cancelled.
+  void motion(const gcode::Motion& m) override;
+  void event(const gcode::Event& e) override;
+
+  // Called after every motion with its place and the number of motions so far.
+  void setProgress(std::function<void(const gcode::SourcePos&, std::int64_t)> progress) {
+    progress_ = std::move(progress);
+  }
+  // Checked at every step; raising it makes motion() throw Cancelled promptly.
+  void setCancelFlag(const std::atomic<bool>* cancel) { cancel_ = cancel; }
+
+  // Closes the run: volumes, stock statistics, overhang area. `blocks`: the
+  // interpreter's count. Call once, after the program.
+  Report finish(std::int64_t blocks);
+
+  const mdh::Stock& stock() const { return *stock_; }
+  double contactTolerance() const { return contact_tolerance_; }
+
+ private:
+  struct ToolParts {
+    geom::Tool tool;
+    geom::ToolPart cutter, shank, holder;
+    double reach = 0.0;
+  };
+  struct Step;
+
+  const ToolParts* partsFor(int tool);
+  void checkLimits(const gcode::Motion& m, const kin::JointPath& path);
+  void runStep(const gcode::Motion& m, const kin::JointPath& path, const ToolParts* parts,
+               const StepPose& a, const StepPose& b, bool& removed);
+  void cutterStep(const Step& step, bool& removed);
+  void stockContacts(const Step& step);
+  void fixtureContacts(const Step& step);
+  Collision entry(const Step& step, CollisionType type, double f) const;
+  double firstContact(const Step& step, const geom::ToolPart& part,
+                      const std::function<bool(const geom::SweptVolume&)>& touches) const;
+  geom::SweptVolume sweep(const Step& step, const geom::ToolPart& part, double f) const;
+  void checkCancel() const;
+
+  const kin::Kinematics& kin_;
+  std::map<int, ToolParts> tools_;
+  std::unique_ptr<mdh::Stock> stock_;
+  std::vector<std::unique_ptr<geom::LineSolid>> fixtures_;
+  SimulationOptions options_;
+  double contact_tolerance_ = 0.0;
+  int current_tool_ = -1;
+
+  Episodes episodes_;
+  RunStats stats_;
+  OverhangStats overhang_;
+  Timing timing_;
+  std::chrono::steady_clock::time_point started_;
+  std::function<void(const gcode::SourcePos&, std::int64_t)> progress_;
+  const std::atomic<bool>* cancel_ = nullptr;
+};
+
+}  // namespace mdhd::check

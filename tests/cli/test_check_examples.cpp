@@ -1,0 +1,133 @@
+// mdhd check on the shared example jobs: what examples/README.md says each
+// report must show, through the command's own entry point, reports validated
+// against the report schema.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "daemon/cli.h"
+#include "protocol/json_schema.h"
+
+namespace mdhd::cli {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct CheckRun {
+  int status = 0;
+  json report;
+  std::string err;
+};
+
+std::string example(const char* name) {
+  return std::string(MDHD_SHARED_DIR) + "/examples/" + name;
+}
+
+CheckRun check(const std::string& job) {
+  std::ostringstream out, err;
+  CheckRun r;
+  r.status = runCheck({job}, out, err);
+  r.err = err.str();
+  r.report = json::parse(out.str());
+  const auto problems = protocol::reportSchema().validate(r.report);
+  for (const auto& p : problems) ADD_FAILURE() << "report schema: " << p.path << ": " << p.message;
+  return r;
+}
+
+std::int64_t notPlusZ(const json& report) {
+  const json& d = report["mdh"]["directions"];
+  return d["+x"].get<std::int64_t>() + d["-x"].get<std::int64_t>() + d["+y"].get<std::int64_t>() +
+         d["-y"].get<std::int64_t>() + d["-z"].get<std::int64_t>();
+}
+
+TEST(CheckExamples, ContourClearsTheRingClean) {
+  const CheckRun r = check(example("contour-3axis.json"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.report["status"], "clean");
+  EXPECT_TRUE(r.report["error"].is_null());
+  EXPECT_TRUE(r.report["collisions"].empty());
+  const double removed = r.report["stats"]["removed_volume_mm3"];
+  EXPECT_NEAR(removed, 1817.0, 0.01 * 1817.0);
+  EXPECT_NEAR(r.report["stats"]["final_volume_mm3"].get<double>(), 100.0 * 80 * 40 - 1817.0, 20.0);
+  EXPECT_EQ(notPlusZ(r.report), 0);
+  EXPECT_EQ(r.report["overhang"]["area_mm2"], 0.0);
+  EXPECT_EQ(r.report["stats"]["moves"], 11);
+  EXPECT_EQ(r.report["stats"]["moves_by_kind"]["arc"], 4);
+  // Feeds: the 7 mm plunge (Z5 to Z-2) at F300, 40+40+20+20 mm lines and four R5
+  // quarter arcs at F800.
+  const double cutting = (7.0 / 300 + (120.0 + 2 * kPi * 5) / 800) * 60;
+  ASSERT_EQ(r.report["stats"]["tools"].size(), 1u);
+  EXPECT_NEAR(r.report["stats"]["tools"][0]["cutting_time_s"].get<double>(), cutting, 1e-6);
+}
+
+TEST(CheckExamples, CrashHasTheThreeMistakesAndNothingElse) {
+  const CheckRun r = check(example("crash-3axis.json"));
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.report["status"], "collisions");
+  const json& c = r.report["collisions"];
+  ASSERT_EQ(c.size(), 3u) << c.dump(2);
+  std::set<std::pair<std::string, int>> got;
+  for (const json& e : c) got.insert({e["type"].get<std::string>(), e["line"].get<int>()});
+  const std::set<std::pair<std::string, int>> want{
+      {"rapid_into_stock", 7}, {"holder_contact", 11}, {"shank_contact", 12}};
+  EXPECT_EQ(got, want) << c.dump(2);
+  for (const json& e : c) {
+    EXPECT_EQ(e["tool"], 1);
+    if (e["type"] == "rapid_into_stock") {
+      EXPECT_EQ(e["block"], "G0 Z-1");
+      // The tip enters the stock top (z 0) on the way to Z-1; 1 mm deep at the end.
+      EXPECT_NEAR(e["position"][2].get<double>(), 0.0, 0.2);
+      EXPECT_NEAR(e["depth"].get<double>(), 1.0, 0.2);
+      EXPECT_EQ(e["joints"]["X"], 20.0);
+    }
+    if (e["type"] == "holder_contact") {
+      // The holder starts 20 mm above the tip: it meets the top when the tip is at -20,
+      // and ends 5 mm deep; the episode lasts into the retract (line 14), which starts
+      // buried.
+      EXPECT_EQ(e["block"], "G1 Z-25 F200");
+      EXPECT_NEAR(e["position"][2].get<double>(), -20.0, 0.2);
+      EXPECT_NEAR(e["depth"].get<double>(), 5.0, 0.25);
+      EXPECT_EQ(e["last_line"], 14);
+    }
+    if (e["type"] == "shank_contact") {
+      // Shank from 15 to 20 mm above the tip at Z-25: a 5 mm tall, 3 mm radius body
+      // whose deepest point in the wall is 2.5 mm from its end faces.
+      EXPECT_EQ(e["block"], "G1 X60 F500");
+      EXPECT_NEAR(e["depth"].get<double>(), 2.5, 0.3);
+      EXPECT_EQ(e["last_line"], 13);
+    }
+  }
+}
+
+TEST(CheckExamples, SideDrillIsAnUndercutHole) {
+  const CheckRun r = check(example("side-drill-ac.json"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.report["status"], "clean");
+  const double hole = kPi * 16 * 15;
+  EXPECT_NEAR(r.report["stats"]["removed_volume_mm3"].get<double>(), hole, 0.01 * hole);
+  const double upperHalf = kPi * 4 * 15;  // half the wall of a 4 mm radius, 15 mm hole
+  EXPECT_NEAR(r.report["overhang"]["area_mm2"].get<double>(), upperHalf, 0.05 * upperHalf);
+  EXPECT_GT(r.report["overhang"]["cells_not_plus_z"].get<int>(), 0);
+}
+
+TEST(CheckExamples, DonutGrooveOverhangsClean) {
+  const CheckRun r = check(example("donut-bc.json"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.report["status"], "clean");
+  EXPECT_TRUE(r.report["collisions"].empty());
+  EXPECT_GT(r.report["overhang"]["cells_not_plus_z"].get<int>(), 0);
+  EXPECT_GT(r.report["overhang"]["area_mm2"].get<double>(), 0.0);
+  EXPECT_GT(r.report["stats"]["removed_volume_mm3"].get<double>(), 0.0);
+}
+
+}  // namespace
+}  // namespace mdhd::cli
