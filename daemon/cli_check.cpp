@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <ostream>
@@ -11,6 +12,8 @@
 #include "daemon/cli.h"
 #include "protocol/json_fields.h"
 #include "protocol/report_json.h"
+#include "protocol/stl.h"
+#include "sim/mesh/mesher.h"
 
 namespace mdhd::cli {
 namespace {
@@ -130,21 +133,37 @@ bool writeReport(const nlohmann::json& doc, const std::string& path, std::ostrea
   return true;
 }
 
+// The final stock as a binary STL: written beside the target and renamed into place,
+// so a failed run never leaves a partial file under the asked name. "" or the error.
+std::string writeMesh(const mdh::Stock& stock, const std::string& path) {
+  const std::string partial = path + ".partial";
+  try {
+    {
+      std::ofstream file(partial, std::ios::binary | std::ios::trunc);
+      if (!file) return "cannot write " + partial;
+      protocol::StlWriter stl(file, "mdhd check: final stock (mm, workpiece frame)");
+      mesh::meshStock(stock, stl);
+      stl.finish();
+    }
+    std::filesystem::rename(partial, path);
+    return "";
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    return std::string("cannot write ") + path + ": " + e.what();
+  }
+}
+
 }  // namespace
 
 int runCheck(const Args& args, std::ostream& out, std::ostream& err) {
   CheckArgs a;
   if (!parseArgs(args, a, err)) return 2;
-  if (!a.mesh.empty()) {
-    // Never write a stand-in file: a mesh that is not the stock would mislead.
-    err << "mdhd check: --mesh: meshing not available yet (the stock mesher is being built); "
-           "run without --mesh for the report\n";
-    return 2;
-  }
   const Clock::time_point started = Clock::now();
   LoadedJob loaded;
   check::Report report;
   bool haveMachine = false;
+  bool meshFailed = false;
   try {
     loaded = loadCheckedJobFile(a.job);
     haveMachine = true;
@@ -159,15 +178,23 @@ int runCheck(const Args& args, std::ostream& out, std::ostream& err) {
     controls.progress = [&](double fraction, std::int64_t moves) {
       progress.update(fraction, moves);
     };
+    std::string meshError;
+    if (!a.mesh.empty()) {
+      controls.finished = [&](const mdh::Stock& stock) { meshError = writeMesh(stock, a.mesh); };
+    }
     report = runCheckJob(loaded, controls);
     progress.done();
+    if (!meshError.empty()) {
+      err << "mdhd check: --mesh: " << meshError << "\n";
+      meshFailed = true;
+    }
     report.timing.load_ms = loadMs;
     report.timing.total_ms += loadMs;
   }
   if (report.error) err << "mdhd check: " << describeError(*report.error, a.job) << "\n";
   const nlohmann::json doc =
       protocol::reportToJson(report, haveMachine ? &*loaded.job.machine : nullptr);
-  if (!writeReport(doc, a.report, out, err)) return 2;
+  if (!writeReport(doc, a.report, out, err) || meshFailed) return 2;
   return exitStatus(report.status);
 }
 
