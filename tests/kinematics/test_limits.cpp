@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "sim/kinematics/presets.h"
 #include "tests/kinematics/expect_vec.h"
@@ -181,6 +182,78 @@ TEST(Limits, ManyTurnHelixStaysFast) {
   EXPECT_NEAR(v->value, 555, 1e-9);
   EXPECT_NEAR(v->first_s, 1.0 / 600, 1e-12);
   EXPECT_NEAR(std::fmod(v->worst_s * 200, 1.0), 0.5, 1e-6);  // a far side; the top is flat
+}
+
+// Brute force over a fine grid of s: the earliest crossing and the extreme beyond it.
+std::optional<LimitViolation> bruteForce(const JointPath& p, int n) {
+  const Machine& m = p.kinematics().machine();
+  std::optional<LimitViolation> best;
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    if (!m.joints[j].limits) continue;
+    const Limits l = *m.joints[j].limits;
+    const auto axis = *axisOfName(m.joints[j].name);
+    std::optional<LimitViolation> v;
+    for (int i = 0; i <= n; ++i) {
+      const double s = double(i) / n;
+      const double x = p.at(s)[axis];
+      const int dir = x > l.max + kLimitSlack ? 1 : (x < l.min - kLimitSlack ? -1 : 0);
+      if (dir == 0) continue;
+      if (!v) {
+        v = LimitViolation{int(j), axis, dir > 0 ? l.max : l.min, x, 0, s, s};
+      } else if ((v->limit == l.max) == (dir > 0) && dir * (x - v->value) > 0) {
+        v->value = x, v->worst_s = s;
+      }
+    }
+    if (v && (!best || v->first_s < best->first_s)) best = v;
+  }
+  return best;
+}
+
+TEST(Limits, RandomArcsAndTcpMovesAgreeWithBruteForce) {
+  Machine mach = presets::bcHeadTable();
+  mach.joints[0].limits = Limits{-40, 40};
+  mach.joints[1].limits = Limits{-40, 40};
+  mach.joints[2].limits = Limits{-20, 60};
+  const Kinematics kin(mach);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int violations = 0;
+  for (int i = 0; i < 60; ++i) {
+    gcode::Motion m;
+    const bool tcp = i % 2 == 1;
+    m.tcp = tcp;
+    m.start = xyz(30 * u(rng), 30 * u(rng), 20 + 20 * u(rng));
+    m.end = xyz(30 * u(rng), 30 * u(rng), 20 + 20 * u(rng));
+    m.start[gcode::kB] = 60 * u(rng);
+    m.end[gcode::kB] = 60 * u(rng);
+    m.end[gcode::kC] = 180 * u(rng);
+    if (i % 3 == 0) {
+      m.type = gcode::MotionType::kArc;
+      m.turn = u(rng) > 0 ? 1 : -1;
+      m.center = {(m.start[0] + m.end[0]) / 2 + 10 * u(rng), (m.start[1] + m.end[1]) / 2};
+      // Same radius at both ends: put the end on the start's circle.
+      const double r = std::hypot(m.start[0] - m.center[0], m.start[1] - m.center[1]);
+      const double a = std::numbers::pi * u(rng);
+      m.end[0] = m.center[0] + r * std::cos(a);
+      m.end[1] = m.center[1] + r * std::sin(a);
+    } else {
+      m.type = gcode::MotionType::kFeed;
+    }
+    const JointPath p(kin, m, 30);
+    const auto got = checkLimits(p);
+    const auto want = bruteForce(p, 10000);
+    SCOPED_TRACE(i);
+    ASSERT_EQ(got.has_value(), want.has_value());
+    if (!got) continue;
+    ++violations;
+    EXPECT_EQ(got->axis, want->axis);
+    EXPECT_NEAR(got->first_s, want->first_s, 1e-4);
+    // The exact extreme is at least the grid's and at most a grid step's curvature away.
+    EXPECT_GE(std::abs(got->value - got->limit), std::abs(want->value - want->limit) - 1e-9);
+    EXPECT_NEAR(got->value, want->value, 1e-3);
+  }
+  EXPECT_GT(violations, 10);  // the random moves exercise both outcomes
+  EXPECT_LT(violations, 55);
 }
 
 }  // namespace
