@@ -272,21 +272,26 @@ void JsonSchema::check(const json& s, const json& v, const std::string& path,
     }
     const bool one = std::string(key) == "oneOf";
     if (matched == 0) {
-      // Where one alternative got furthest into the document, its problems say the most.
+      // An alternative that accepted the shape and failed inside it (not on a missing
+      // or unknown member) is the one the author meant: its problems say the most.
       std::size_t best = 0, bestLen = 0;
       bool tie = false;
       for (std::size_t i = 0; i < branches.size(); ++i) {
         std::size_t len = 0;
-        for (const SchemaProblem& p : branches[i]) len = std::max(len, p.path.size());
-        if (i == 0 || len > bestLen) {
+        for (const SchemaProblem& p : branches[i]) {
+          const bool structural =
+              p.message == "missing (required)" || p.message.rfind("unknown field", 0) == 0;
+          if (!structural) len = std::max(len, p.path.size() + 1);
+        }
+        if (len > bestLen) {
           tie = false;
           best = i;
           bestLen = len;
-        } else if (len == bestLen) {
+        } else if (len == bestLen && len > 0) {
           tie = true;
         }
       }
-      if (!tie && bestLen > path.size()) {
+      if (!tie && bestLen > path.size() + 1) {
         out.insert(out.end(), branches[best].begin(), branches[best].end());
       } else {
         std::string why;
