@@ -208,66 +208,77 @@ void SweptVolume::addTranslation(const ToolPart& part, const Translation& tr) {
   }
 }
 
+// One line in the frame of one swept body: a line point at t (relative to the tip's
+// coordinate), shifted back by s along the move, is at height z0 + ze t - zd s on the
+// tool's axis and at radial offset r0 + t re - s rd from it.
+struct SweptVolume::LineFrame {
+  int axis, i1, i2;
+  double u, v;
+  double z0, r0re, r0rd, r0r0;
+};
+
+bool SweptVolume::pieceExtent(const SweptBody& body, const SweptPiece& p, const LineFrame& f,
+                              double& lo, double& hi) const {
+  const AxisTerms& k = body.terms[f.axis];
+  const SectionTolerance tol{body.linearTol, body.quadricTol};
+  // g = |r|^2 - alpha - beta z - gamma z^2, in (t, s)
+  Quadric2 g;
+  g.a = k.re2 - p.gamma * k.ze * k.ze;
+  g.b = -k.rerd + p.gamma * k.ze * k.zd;
+  g.c = k.rd2 - p.gamma * k.zd * k.zd;
+  g.d = f.r0re - 0.5 * p.beta * k.ze - p.gamma * f.z0 * k.ze;
+  g.e = -f.r0rd + 0.5 * p.beta * k.zd + p.gamma * f.z0 * k.zd;
+  g.f = f.r0r0 - p.alpha - p.beta * f.z0 - p.gamma * f.z0 * f.z0;
+  if (k.ze != 0.0) {
+    const HalfPlane h[4] = {{0.0, -1.0, 0.0},
+                            {0.0, 1.0, -body.length},
+                            {-k.ze, k.zd, p.z0 - f.z0},
+                            {k.ze, -k.zd, f.z0 - p.z1}};
+    return sectionExtent(g, h, tol, lo, hi);
+  }
+  // The line is square to the axis: z does not change along it, so the piece's z range
+  // only limits s, and what is left is a strip (most lines of 3-axis work).
+  double s0 = 0.0;
+  double s1 = body.length;
+  if (k.zd == 0.0) {
+    if (f.z0 < p.z0 - tol.linear || f.z0 > p.z1 + tol.linear) return false;
+  } else {
+    const double a = (f.z0 - p.z1) / k.zd;
+    const double b = (f.z0 - p.z0) / k.zd;
+    s0 = std::max(s0, std::min(a, b));
+    s1 = std::min(s1, std::max(a, b));
+    if (s0 > s1) {
+      if (s0 > s1 + tol.linear) return false;
+      s0 = s1 = 0.5 * (s0 + s1);
+    }
+  }
+  return stripExtent(g, s0, s1, tol, lo, hi);
+}
+
 bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double v,
                                Interval& out) const {
-  const int i1 = (axis + 1) % 3;
-  const int i2 = (axis + 2) % 3;
-  // Line point t (relative to the tip's coordinate) minus s * dir, in the tool's frame:
-  // z = z0 + ze t - zd s and the radial part r0 + t re - s rd.
+  LineFrame f{axis, (axis + 1) % 3, (axis + 2) % 3, u, v, 0, 0, 0, 0};
   glm::dvec3 delta(0.0);
-  delta[i1] = u - body.tip[i1];
-  delta[i2] = v - body.tip[i2];
+  delta[f.i1] = u - body.tip[f.i1];
+  delta[f.i2] = v - body.tip[f.i2];
   const AxisTerms& k = body.terms[axis];
-  const double z0 = glm::dot(body.axis, delta);
-  const double r0re = -z0 * k.ze;
-  const double r0rd = glm::dot(delta, body.dir) - z0 * k.zd;
-  const double r0r0 = glm::dot(delta, delta) - z0 * z0;
+  f.z0 = glm::dot(body.axis, delta);
+  f.r0re = -f.z0 * k.ze;
+  f.r0rd = glm::dot(delta, body.dir) - f.z0 * k.zd;
+  f.r0r0 = glm::dot(delta, delta) - f.z0 * f.z0;
   const double base = body.tip[axis];
-  const SectionTolerance tol{body.linearTol, body.quadricTol};
 
   double lo = std::numeric_limits<double>::infinity();
   double hi = -lo;
   enum class Result { kMiss, kHit, kSkipped };
   auto solve = [&](int i) {
     const SweptPiece& p = pieces_[i];
-    if (u < p.box.lo[i1] || u > p.box.hi[i1] || v < p.box.lo[i2] || v > p.box.hi[i2])
+    if (u < p.box.lo[f.i1] || u > p.box.hi[f.i1] || v < p.box.lo[f.i2] || v > p.box.hi[f.i2])
       return Result::kMiss;
     if (p.box.lo[axis] >= lo && p.box.hi[axis] <= hi) return Result::kSkipped;  // inside hull
-    // g = |r|^2 - alpha - beta z - gamma z^2
-    Quadric2 g;
-    g.a = k.re2 - p.gamma * k.ze * k.ze;
-    g.b = -k.rerd + p.gamma * k.ze * k.zd;
-    g.c = k.rd2 - p.gamma * k.zd * k.zd;
-    g.d = r0re - 0.5 * p.beta * k.ze - p.gamma * z0 * k.ze;
-    g.e = -r0rd + 0.5 * p.beta * k.zd + p.gamma * z0 * k.zd;
-    g.f = r0r0 - p.alpha - p.beta * z0 - p.gamma * z0 * z0;
-    const HalfPlane h[4] = {{0.0, -1.0, 0.0},
-                            {0.0, 1.0, -body.length},
-                            {-k.ze, k.zd, p.z0 - z0},
-                            {k.ze, -k.zd, z0 - p.z1}};
     double plo = 0.0;
     double phi = 0.0;
-    if (k.ze == 0.0) {
-      // The line is square to the axis: z does not change along it, so the piece's z
-      // range only limits s, and what is left is a strip (most lines of 3-axis work).
-      double s0 = 0.0;
-      double s1 = body.length;
-      if (k.zd == 0.0) {
-        if (z0 < p.z0 - tol.linear || z0 > p.z1 + tol.linear) return Result::kMiss;
-      } else {
-        const double a = (z0 - p.z1) / k.zd;
-        const double b = (z0 - p.z0) / k.zd;
-        s0 = std::max(s0, std::min(a, b));
-        s1 = std::min(s1, std::max(a, b));
-        if (s0 > s1) {
-          if (s0 > s1 + tol.linear) return Result::kMiss;
-          s0 = s1 = 0.5 * (s0 + s1);
-        }
-      }
-      if (!stripExtent(g, s0, s1, tol, plo, phi)) return Result::kMiss;
-    } else if (!sectionExtent(g, h, tol, plo, phi)) {
-      return Result::kMiss;
-    }
+    if (!pieceExtent(body, p, f, plo, phi)) return Result::kMiss;
     lo = std::min(lo, plo + base);
     hi = std::max(hi, phi + base);
     return Result::kHit;

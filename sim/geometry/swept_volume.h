@@ -76,7 +76,10 @@ class SweptVolume final : public LineSolid {
   SweptVolume(const ToolPart& part, const std::vector<Translation>& moves, double errorBound);
   void build(const ToolPart& part, const std::vector<Translation>& moves);
   void addTranslation(const ToolPart& part, const Translation& tr);
+  struct LineFrame;
   bool bodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
+  bool pieceExtent(const SweptBody& body, const SweptPiece& p, const LineFrame& f, double& lo,
+                   double& hi) const;
 
   std::vector<Translation> translations_;
   std::vector<SweptBody> bodies_;
