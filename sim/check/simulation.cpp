@@ -182,8 +182,8 @@ Collision Simulation::entry(const Step& step, CollisionType type, double f) cons
   c.line = step.m.pos.line;
   if (step.m.block_text != nullptr) c.block = *step.m.block_text;
   c.tool = step.m.tool;
-  c.joints = step.path.at(step.a.s + f * (step.b.s - step.a.s));
-  c.position = f >= 1.0 ? step.b.pose.tip : geom::interpolatePose(step.a.pose, step.b.pose, f).tip;
+  c.joints = f >= 1.0 ? step.b.q : step.path.at(step.a.s + f * (step.b.s - step.a.s));
+  c.position = toolPoseAt(step.path, c.joints).tip;  // on the path, not the step's chord
   return c;
 }
 

@@ -1,0 +1,58 @@
+#pragma once
+// Runs a G-code program through a check::Simulation on a machine, for the tests.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/check/simulation.h"
+#include "sim/gcode/interpreter.h"
+#include "sim/kinematics/presets.h"
+
+namespace mdhd::check::rig {
+
+struct Rig {
+  kin::Machine machine = kin::presets::threeAxisMill();
+  std::vector<geom::Tool> tools;
+  geom::Aabb stock{{0, 0, -20}, {40, 40, 0}};
+  std::vector<std::unique_ptr<geom::LineSolid>> fixtures;
+  SimulationOptions options;
+};
+
+// A flat end mill: cutter to 10 mm above the tip, shank to 30, holder (20 mm) above.
+inline geom::Tool flatTool(int number = 1) {
+  geom::Tool t;
+  t.number = number;
+  t.shape = geom::ToolShape::kFlat;
+  t.diameter = 6;
+  t.shank_diameter = 6;
+  t.flute_length = 10;
+  t.length = 40;
+  t.holder = {{20, 10}};
+  return t;
+}
+
+inline Report run(Rig setup, const std::string& program,
+                  const std::atomic<bool>* cancel = nullptr) {
+  const kin::Kinematics kin(setup.machine);
+  if (setup.tools.empty()) setup.tools.push_back(flatTool());
+  Simulation sim(kin, setup.tools, setup.stock, std::move(setup.fixtures), setup.options);
+  sim.setCancelFlag(cancel);
+  gcode::InterpreterConfig config;
+  config.home = setup.machine.home;
+  config.axis_mask = 0;
+  for (const kin::Joint& j : setup.machine.joints)
+    if (const auto a = kin::axisOfName(j.name)) config.axis_mask |= 1u << *a;
+  for (const geom::Tool& t : setup.tools) config.tools.add({t.number, t.length, t.diameter});
+  gcode::Interpreter interp(config, sim);
+  interp.run(gcode::makeStringSource(program));
+  return sim.finish(static_cast<std::int64_t>(interp.blocksExecuted()));
+}
+
+inline std::vector<const Collision*> ofType(const Report& r, CollisionType type) {
+  std::vector<const Collision*> out;
+  for (const Collision& c : r.collisions)
+    if (c.type == type) out.push_back(&c);
+  return out;
+}
+
+}  // namespace mdhd::check::rig

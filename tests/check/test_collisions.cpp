@@ -1,0 +1,257 @@
+// Each collision type of the spec (section 5) on 3-axis and 5-axis machines: the
+// episode, its first line, the place of first contact and the depth.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "sim/geometry/static_solids.h"
+#include "tests/check/check_fixture.h"
+
+namespace mdhd::check {
+namespace {
+
+using rig::flatTool;
+using rig::ofType;
+using rig::Rig;
+using rig::run;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr const char* kStart = "G21 G90 G17\nT1 M6\nG43 H1\n";  // lines 1-3
+
+TEST(Collisions, RapidIntoStockRemovesAndIsOneEpisode) {
+  Rig s;
+  s.options.density = 5;
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S9000\n"       // 4
+                                         "G0 X20 Y20 Z5\n"  // 5
+                                         "G0 Z-2\n"         // 6: 2 mm into the stock
+                                         "G0 X24\n"         // 7: and on sideways
+                                         "G0 Z5\nM5\nM30\n");
+  ASSERT_EQ(r.collisions.size(), 1u);
+  const Collision& c = r.collisions[0];
+  EXPECT_EQ(c.type, CollisionType::kRapidIntoStock);
+  EXPECT_EQ(c.line, 6);
+  EXPECT_EQ(c.last_line, 7);
+  EXPECT_EQ(c.block, "G0 Z-2");
+  EXPECT_EQ(c.tool, 1);
+  EXPECT_NEAR(c.position.z, 0.0, 0.15);  // first contact at the stock top
+  EXPECT_NEAR(c.position.x, 20.0, 1e-9);
+  EXPECT_NEAR(c.joints[gcode::kZ], c.position.z + 40.0, 1e-6);  // G43: Z joint = tip + length
+  EXPECT_NEAR(c.depth, 2.0, 0.2);
+  // The removal happened: a 6 mm hole 2 mm deep, then a 4 mm long slot of it.
+  const double removed = 2 * (kPi * 9 + 4 * 6);
+  EXPECT_NEAR(r.stats.removed_volume_mm3, removed, 0.03 * removed);
+  EXPECT_EQ(r.status, Status::kCollisions);
+}
+
+TEST(Collisions, CutWithTheSpindleOff) {
+  Rig s;
+  s.options.density = 5;
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "G0 X20 Y20 Z5\n"  // 4 (never started: M3 missing)
+                                         "G1 Z-2 F200\n"    // 5
+                                         "G1 X30\n"         // 6
+                                         "G0 Z5\n"          // 7
+                                         "M3 S9000\n"       // 8
+                                         "G1 X10 Z-1\n"     // 9 spindle on: a clean cut
+                                         "M5\n"             // 10
+                                         "G1 Y30\n"         // 11 stopped again
+                                         "M30\n");
+  const auto off = ofType(r, CollisionType::kSpindleOffCut);
+  ASSERT_EQ(off.size(), 2u);
+  EXPECT_EQ(off[0]->line, 5);
+  EXPECT_EQ(off[0]->last_line, 6);
+  EXPECT_NEAR(off[0]->depth, 2.0, 0.2);
+  EXPECT_EQ(off[1]->line, 11);
+  EXPECT_EQ(r.collisions.size(), 2u);
+  EXPECT_GT(r.stats.removed_volume_mm3, 0.0);
+}
+
+TEST(Collisions, ShankInTheWallButNotInItsOwnHole) {
+  Rig s;
+  s.options.density = 5;
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S9000\n"          // 4
+                                         "G0 X20 Y20 Z5\n"     // 5
+                                         "G1 Z-12 F200\n"      // 6: shank follows the cutter
+                                         "G1 X30 F400\n"       // 7: shank 2 mm into the wall
+                                         "G1 X20\n"            // 8: and back in its slot
+                                         "G0 Z5\nM5\nM30\n");  // 9: out through the hole
+  ASSERT_EQ(r.collisions.size(), 1u);
+  const Collision& c = r.collisions[0];
+  EXPECT_EQ(c.type, CollisionType::kShankContact);
+  EXPECT_EQ(c.part, ToolPartName::kShank);
+  EXPECT_EQ(c.line, 7);
+  // The shank starts 10 mm above the tip: material from z -2 to 0 inside it, whose
+  // deepest point is 2 mm from the shank's lower end.
+  EXPECT_NEAR(c.depth, 2.0, 0.25);
+  EXPECT_NEAR(c.position.z, -12.0, 1e-9);
+  EXPECT_EQ(c.last_line, 8);
+}
+
+TEST(Collisions, HolderBuriedByAPlunge) {
+  Rig s;
+  s.options.density = 5;
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S9000\n"
+                                         "G0 X20 Y20 Z5\n"
+                                         "G1 Z-18 F200\n"  // 6: holder (30 above the tip) at 12
+                                         "G1 Z-33\n"       // 7: holder bottom at -3
+                                         "G0 Z5\nM5\nM30\n");
+  const auto holder = ofType(r, CollisionType::kHolderContact);
+  ASSERT_EQ(holder.size(), 1u);
+  EXPECT_EQ(holder[0]->line, 7);
+  EXPECT_NEAR(holder[0]->position.z, -30.0, 0.2);  // holder meets the top at tip -30
+  EXPECT_NEAR(holder[0]->depth, 3.0, 0.25);
+  EXPECT_EQ(holder[0]->last_line, 8);  // the retract starts buried
+  EXPECT_TRUE(ofType(r, CollisionType::kShankContact).empty());
+}
+
+TEST(Collisions, ContactsShallowerThanTheToleranceAreNotCollisions) {
+  Rig s;
+  s.options.density = 5;
+  s.options.contact_tolerance = 2.5;  // the shank's 2 mm in the wall is below it
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S9000\nG0 X20 Y20 Z5\nG1 Z-12 F200\nG1 X30 F400\n"
+                                         "G0 Z5\nM5\nM30\n");
+  EXPECT_TRUE(r.collisions.empty());
+  EXPECT_EQ(r.status, Status::kClean);
+}
+
+TEST(Collisions, CutterIntoAFixtureBelowTheStock) {
+  Rig s;
+  s.options.density = 5;
+  s.fixtures.push_back(
+      std::make_unique<geom::BoxSolid>(glm::dvec3(-10, -10, -30), glm::dvec3(50, 50, -20)));
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S9000\nG0 X20 Y20 Z5\n"
+                                         "G1 Z-21 F200\n"  // 6: 1 mm into the vise
+                                         "G0 Z5\nM5\nM30\n");
+  const auto f = ofType(r, CollisionType::kFixtureContact);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0]->line, 6);
+  EXPECT_EQ(f[0]->part, ToolPartName::kCutter);
+  EXPECT_EQ(f[0]->fixture, 0);
+  EXPECT_NEAR(f[0]->depth, 1.0, 0.1);
+  // First contact: where the penetration first exceeds the contact tolerance (0.1 mm).
+  EXPECT_NEAR(f[0]->position.z, -20.1, 0.02);
+  // The fixture is not machinable: only the stock lost material.
+  EXPECT_NEAR(r.stats.removed_volume_mm3, kPi * 9 * 20, 0.02 * kPi * 9 * 20);
+}
+
+TEST(Collisions, RapidThroughAClampCylinder) {
+  Rig s;
+  s.options.density = 5;
+  s.fixtures.push_back(std::make_unique<geom::CylinderSolid>(glm::dvec3(60, 20, -20),
+                                                             glm::dvec3(0, 0, 1), 5.0, 30.0));
+  const Report r =
+      run(std::move(s), std::string(kStart) +
+                            "M3 S9000\nG0 X20 Y20 Z5\n"
+                            "G0 X80\n"  // 6: the cutter (z 5..15) through the clamp top
+                            "G0 Z50\nM5\nM30\n");
+  ASSERT_EQ(r.collisions.size(), 1u);
+  const Collision& c = r.collisions[0];
+  EXPECT_EQ(c.type, CollisionType::kFixtureContact);
+  EXPECT_EQ(c.line, 6);
+  EXPECT_EQ(c.part, ToolPartName::kCutter);
+  // The cutter's edge meets the clamp's side, plus the contact tolerance (0.1 mm).
+  EXPECT_NEAR(c.position.x, 60 - 5 - 3 + 0.1, 0.03);
+  EXPECT_NEAR(c.depth, 3.0, 0.25);  // clamp top 5 mm up the 3 mm radius cutter
+}
+
+TEST(Collisions, AxisLimitEpisodesAndHowFarBeyond) {
+  Rig s;
+  s.options.density = 2;
+  const Report r = run(std::move(s),
+                       "G21 G90\nT1 M6\nG43 H1\n"
+                       "G0 X450\n"   // 4: X limit is 400
+                       "G0 X420\n"   // 5: still beyond: same episode
+                       "G0 X0\n"     // 6: back (the path starts beyond)
+                       "G0 X10\n"    // 7: inside
+                       "G0 X-410\n"  // 8: a new episode at the other end
+                       "M30\n");
+  const auto lim = ofType(r, CollisionType::kAxisLimit);
+  ASSERT_EQ(lim.size(), 2u);
+  EXPECT_EQ(lim[0]->line, 4);
+  EXPECT_EQ(lim[0]->last_line, 6);
+  EXPECT_EQ(lim[0]->axis, "X");
+  EXPECT_NEAR(lim[0]->depth, 50.0, 1e-9);
+  EXPECT_NEAR(lim[0]->joints[gcode::kX], 400.0, 1e-6);  // where it first leaves its range
+  EXPECT_EQ(lim[1]->line, 8);
+  EXPECT_NEAR(lim[1]->depth, 10.0, 1e-9);
+  EXPECT_EQ(r.collisions.size(), 2u);
+}
+
+// 5-axis: an AC trunnion (W at the table centre) turns the part under a standing tool.
+Rig trunnion() {
+  Rig s;
+  s.machine = kin::presets::acTrunnion();
+  s.stock = {{-10, -10, 0}, {10, 10, 10}};
+  s.options.density = 5;
+  return s;
+}
+
+TEST(Collisions, TableTurnsThePartIntoAToolWithTheSpindleOff) {
+  const Report r = run(trunnion(), std::string(kStart) +
+                                       "G0 X16 Y0 Z5\n"  // 4: tip beside the part
+                                       "G1 C60 F3600\n"  // 5: the corner swings into it
+                                       "M30\n");
+  const auto off = ofType(r, CollisionType::kSpindleOffCut);
+  ASSERT_EQ(off.size(), 1u);
+  EXPECT_EQ(off[0]->line, 5);
+  // In W the tip runs on a circle of radius 16 about the C axis.
+  EXPECT_NEAR(std::hypot(off[0]->position.x, off[0]->position.y), 16.0, 1e-6);
+  EXPECT_NEAR(off[0]->position.z, 5.0, 1e-9);
+  EXPECT_GT(off[0]->joints[gcode::kC], 0.0);
+  EXPECT_LT(off[0]->joints[gcode::kC], 60.0);
+  EXPECT_GT(r.stats.removed_volume_mm3, 0.0);
+  // The tip's path in W: from home (tip at z 260) to the start, then the 60 degree arc
+  // within the chordal tolerance.
+  EXPECT_NEAR(r.stats.path_length, std::hypot(16.0, 255.0) + 16.0 * kPi / 3, 0.01);
+}
+
+TEST(Collisions, TiltedRapidIntoTheSideFace) {
+  // A-90 turns the part's -Y face up (the side drill's convention: tool axis -Y in W).
+  const Report r = run(trunnion(), std::string(kStart) +
+                                       "M3 S8000\n"
+                                       "G0 A-90 C0\n"    // 5
+                                       "G0 X0 Y5 Z25\n"  // 6: tip 15 mm off the face
+                                       "G0 Z8\n"         // 7: 2 mm into it, rapid
+                                       "G0 Z25\nM5\nM30\n");
+  const auto rapid = ofType(r, CollisionType::kRapidIntoStock);
+  ASSERT_EQ(rapid.size(), 1u);
+  EXPECT_EQ(rapid[0]->line, 7);
+  EXPECT_NEAR(rapid[0]->depth, 2.0, 0.25);
+  EXPECT_NEAR(rapid[0]->position.y, -10.0, 0.15);  // first contact on the -Y face
+  EXPECT_EQ(r.collisions.size(), 1u);
+}
+
+TEST(Collisions, HolderOnA5AxisTilt) {
+  // A short tool drilling into the tilted part's face until its holder meets the face.
+  Rig s = trunnion();
+  geom::Tool t = flatTool();
+  t.length = 20;
+  t.flute_length = 8;
+  t.holder = {{20, 8}};  // holder from 12 mm above the tip
+  s.tools = {t};
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S8000\nG0 A-90 C0\nG0 X0 Y5 Z25\n"
+                                         "G1 Z-4 F200\n"  // 7: tip 14 deep: holder 2 mm in
+                                         "G0 Z25\nM5\nM30\n");
+  const auto holder = ofType(r, CollisionType::kHolderContact);
+  ASSERT_EQ(holder.size(), 1u);
+  EXPECT_EQ(holder[0]->line, 7);
+  EXPECT_NEAR(holder[0]->depth, 2.0, 0.25);
+  // The shank (as wide as the cutter) follows it down its own hole: no contact.
+  EXPECT_TRUE(ofType(r, CollisionType::kShankContact).empty());
+  EXPECT_EQ(r.collisions.size(), 1u);
+}
+
+TEST(Collisions, CancelFlagStopsTheRun) {
+  std::atomic<bool> cancel{true};
+  EXPECT_THROW(run(Rig{}, std::string(kStart) + "G0 X1\nM30\n", &cancel), Cancelled);
+}
+
+}  // namespace
+}  // namespace mdhd::check
