@@ -133,7 +133,8 @@ void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
 void BlockExecutor::checkWordUse(Step& st) {
   const BlockWords& w = st.w;
   const int g0 = w.g[kGNonModal];
-  const bool nonmodal_axes = usesAxesNonModal(g0) || w.g[kGToolLength] == 431;
+  const int g8 = w.g[kGToolLength];
+  const bool nonmodal_axes = usesAxesNonModal(g0) || g8 == 431 || g8 == 432;
   const int explicit_motion = w.g[kGMotion];
   if (explicit_motion >= 0) {
     if (explicit_motion == 800 && w.hasAxis() && !nonmodal_axes)
@@ -231,6 +232,7 @@ void BlockExecutor::runStop(Step& st) {
   InterpState& s = st.s;
   if (s.comp_side != CompSide::kOff) compOff(st);
   const AxisValues machine = toMachine(s, s.current);
+  importCoordSystem(s, 0);
   s.coord_system = 0;
   s.current = toProgram(s, machine);
   s.programmed = s.current;

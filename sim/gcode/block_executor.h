@@ -10,6 +10,7 @@
 #include "sim/gcode/interp_state.h"
 #include "sim/gcode/interpreter_config.h"
 #include "sim/gcode/motion_output.h"
+#include "sim/gcode/parameters.h"
 
 namespace mdhd::gcode {
 
@@ -32,6 +33,11 @@ class BlockExecutor {
   const BlockWords& lastWords() const { return words_; }
   // Machine values where the last motion ended.
   const AxisValues& machinePosition() const { return out_.machine(); }
+  // LinuxCNC keeps offsets and stored positions in parameters (#5161..#5389,
+  // machine units = mm here) that a program may also write; they take effect
+  // when the interpreter reads them: selecting a coordinate system, G10 L2/L20,
+  // M2/M30 (G54), G92.3 and G28/G30. Without parameters the state is all there is.
+  void attachParameters(const ParameterStore* params) { params_ = params; }
   // Values of LinuxCNC's predefined named parameters (#<_x>, #<_metric>, ...).
   bool predefined(std::string_view name, double& value) const;
 
@@ -67,8 +73,10 @@ class BlockExecutor {
   void setCoordSystem(Step& st);
   // Offsets and stored positions (block_offsets.cpp).
   void setOffsetsG10(Step& st);
+  void setToolG10(Step& st, int l);
   void setG92(Step& st);
   void goToStored(Step& st, bool second);
+  void importCoordSystem(InterpState& s, int index) const;
   // Motion (block_motion.cpp).
   void runMotion(Step& st);
   AxisValues findEnd(const Step& st) const;
@@ -107,6 +115,7 @@ class BlockExecutor {
   std::vector<Queued> queue_;
   double endpoint_[2] = {0, 0};
   bool endpoint_valid_ = false;
+  const ParameterStore* params_ = nullptr;
 };
 
 }  // namespace mdhd::gcode

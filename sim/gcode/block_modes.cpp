@@ -183,6 +183,14 @@ void BlockExecutor::setToolLength(Step& st) {
       if (st.w.has('Z')) s.tool_length = st.lenWord('Z');
       s.tool_length_tool = -1;
       break;
+    case 432:  // G43.2: an additional offset on top of the one in effect
+      if (s.tool_length_mode == 434) st.fail("Cannot use G43.2 under G43.4", column);
+      if (st.w.has('H') == st.w.hasAxis())
+        st.fail("G43.2 needs either an H word or axis offsets, not both", column);
+      for (char c : {'X', 'Y', 'A', 'B', 'C', 'U', 'V', 'W'})
+        if (st.w.has(c)) st.failWord(c, "G43.2 offsets other than Z are not supported");
+      s.tool_length += st.w.has('H') ? lengthOf(hWord()) : st.lenWord('Z');
+      break;
     case 434: {
       const int tool = st.w.has('H') ? hWord() : s.tool;
       if (tool == 0) st.fail("G43.4 needs a tool: H word or a tool in the spindle", column);
@@ -210,6 +218,7 @@ void BlockExecutor::setCoordSystem(Step& st) {
             st.w.g_column[kGCoordSystem]);
   const int index = g <= 590 ? (g - 540) / 10 : 6 + (g - 591);
   const AxisValues machine = toMachine(s, s.current);
+  importCoordSystem(s, index);  // re-read even when it is the active one, as LinuxCNC does
   s.coord_system = index;
   s.current = toProgram(s, machine);
   s.programmed = s.current;

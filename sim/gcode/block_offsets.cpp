@@ -19,14 +19,26 @@ double axisWord(const BlockExecutor&, const BlockWords& w, int axis, double unit
 
 }  // namespace
 
+// G54..G59.3 number `index` (0..8) as the parameters hold it: #5221+20i.. axes, #5230+20i rotation.
+void BlockExecutor::importCoordSystem(InterpState& s, int index) const {
+  if (!params_) return;
+  const int base = 5221 + 20 * index;
+  for (int a = 0; a < kAxisCount; ++a) s.g5x[index][a] = params_->get(base + a);
+  s.rotation[index] = params_->get(base + 9);
+}
+
 void BlockExecutor::setOffsetsG10(Step& st) {
   InterpState& s = st.s;
   const int column = st.w.g_column[kGNonModal];
   if (!st.w.has('L')) st.fail("Line number missing with G10", column);
   const double l = st.w.get('L');
+  if (l == 1 || l == 10 || l == 11) {
+    setToolG10(st, static_cast<int>(l));
+    return;
+  }
   if (l != 2 && l != 20)
-    st.failWord('L',
-                "G10 L" + std::to_string(static_cast<int>(l)) + " is not supported (only L2, L20)");
+    st.failWord('L', "G10 L" + std::to_string(static_cast<int>(l)) +
+                         " is not supported (only L1, L2, L10, L11, L20)");
   if (!st.w.has('P')) st.fail("P word missing with G10", column);
   const double p = st.w.get('P');
   if (p != std::floor(p) || p < 0 || p > kCoordSystems)
@@ -35,8 +47,12 @@ void BlockExecutor::setOffsetsG10(Step& st) {
   const bool active = index == s.coord_system;
   if (active && s.comp_side != CompSide::kOff)
     st.fail("Cannot change coordinate systems with cutter radius comp", column);
-  if (l == 20 && st.w.has('R')) st.failWord('R', "R word with no G code that uses it");
+  if (l == 20 && st.w.has('R')) st.failWord('R', "R not allowed in G10 L20");
+  if (st.w.has('I') || st.w.has('J'))
+    st.fail("I J words not allowed with G10 L" + std::to_string(static_cast<int>(l)), column);
+  // The current point in the old offsets, before the system is re-read.
   const AxisValues machine = toMachine(s, s.current);
+  importCoordSystem(s, index);
   AxisValues& offset = s.g5x[index];
   if (l == 2) {
     for (int a = 0; a < kAxisCount; ++a)
@@ -60,6 +76,46 @@ void BlockExecutor::setOffsetsG10(Step& st) {
   }
 }
 
+// G10 L1 / L10 / L11 P<tool>: edit the tool table. L1 sets the length (Z) and
+// radius (R) directly; L10 sets the length that makes the current Z read the Z
+// word with that offset; L11 does the same in G59.3 without G92. The offset in
+// effect changes only with the next G43, as in LinuxCNC.
+void BlockExecutor::setToolG10(Step& st, int l) {
+  InterpState& s = st.s;
+  const BlockWords& w = st.w;
+  const int column = w.g_column[kGNonModal];
+  const std::string name = "G10 L" + std::to_string(l);
+  if (!w.has('P')) st.fail("P word missing with " + name, column);
+  const double p = w.get('P');
+  if (p != std::floor(p) || p < 1) st.failWord('P', "Tool number P must be a positive integer");
+  const int number = static_cast<int>(p);
+  const ToolEntry* found = config_.tools.find(number);
+  if (!found)
+    st.failWord('P', "Requested tool " + std::to_string(number) + " not found in the tool table");
+  if (!w.has('Z') && !w.has('R') && !w.hasAxis() && !w.has('I') && !w.has('J') && !w.has('Q'))
+    st.fail("G10 L1 without offsets has no effect", column);
+  for (char c : {'X', 'Y', 'A', 'B', 'C', 'U', 'V', 'W'})
+    if (w.has(c)) st.failWord(c, name + ": only Z (length) and R (radius) offsets are kept");
+  for (char c : {'I', 'J', 'Q'})
+    if (w.has(c)) st.failWord(c, name + ": lathe tool angles and orientation are not supported");
+  ToolEntry tool = *found;
+  if (w.has('Z')) {
+    const double z = st.lenWord('Z');
+    if (l == 1) {
+      tool.length = z;
+    } else {
+      // Z of the current point with no tool length offset: in the active system
+      // (with G92) for L10, in G59.3 without G92 for L11.
+      const double offset = s.tool_length_mode == 434 ? 0.0 : s.tool_length;
+      const double here =
+          l == 10 ? s.current[kZ] + offset : toMachine(s, s.current)[kZ] - offset - s.g5x[8][kZ];
+      tool.length = here - z;
+    }
+  }
+  if (w.has('R')) tool.diameter = 2.0 * st.lenWord('R');
+  config_.tools.add(tool);
+}
+
 void BlockExecutor::setG92(Step& st) {
   InterpState& s = st.s;
   const int g = st.w.g[kGNonModal];
@@ -79,6 +135,8 @@ void BlockExecutor::setG92(Step& st) {
   } else {
     if (g == 921) s.g92_saved = AxisValues{};
     if (g == 923) {
+      if (params_)
+        for (int a = 0; a < kAxisCount; ++a) s.g92_saved[a] = params_->get(5211 + a);
       s.g92 = s.g92_saved;
       s.g92_applied = true;
     } else {
@@ -102,7 +160,9 @@ void BlockExecutor::goToStored(Step& st, bool second) {
   FeedInfo none;
   emitStraight(st, MotionType::kRapid, middle, none);
   AxisValues target_machine = toMachine(s, middle);
-  const AxisValues& stored = second ? s.g30 : s.g28;
+  AxisValues& stored = second ? s.g30 : s.g28;
+  if (params_)
+    for (int a = 0; a < kAxisCount; ++a) stored[a] = params_->get((second ? 5181 : 5161) + a);
   const bool all = !st.w.hasAxis();
   for (int a = 0; a < kAxisCount; ++a)
     if (all || st.w.has(kAxisLetters[a])) target_machine[a] = stored[a];

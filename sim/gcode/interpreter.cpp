@@ -1,11 +1,15 @@
 #include "sim/gcode/interpreter.h"
 
+#include <limits>
+
 #include "sim/gcode/reader.h"
 
 namespace mdhd::gcode {
 
 Interpreter::Interpreter(InterpreterConfig config, MotionSink& sink)
     : executor_(std::move(config), sink) {
+  published_offsets_.fill(std::numeric_limits<double>::quiet_NaN());
+  executor_.attachParameters(&params_);
   params_.setPredefined([this](std::string_view name) -> std::optional<double> {
     double v = 0.0;
     if (executor_.predefined(name, v)) return v;
@@ -24,7 +28,7 @@ void Interpreter::run(std::unique_ptr<LineSource> program) {
     executor_.execute(block);
     ++blocks_;
     const BlockWords& w = executor_.lastWords();
-    publishParameters(w.g[kGNonModal] >= 0 || w.g[kGCoordSystem] >= 0);
+    publishParameters(w.g[kGNonModal] >= 0 || w.g[kGCoordSystem] >= 0 || w.m[kMStop] >= 0);
   }
   executor_.finish(block);
 }
@@ -50,16 +54,24 @@ void Interpreter::publishParameters(bool offsets) {
     params_.set(5070, s.probe_tripped ? 1.0 : 0.0);
   }
   if (!offsets) return;
-  // Offsets and stored positions in machine units (mm).
+  // Offsets and stored positions in machine units (mm). Only values the block
+  // changed are written, so a value the program wrote itself stays until the
+  // interpreter reads it (see BlockExecutor::attachParameters).
+  auto put = [this](int number, double value) {
+    double& last = published_offsets_[static_cast<std::size_t>(number - kFirstOffsetParameter)];
+    if (last == value) return;
+    last = value;
+    params_.set(number, value);
+  };
   for (int a = 0; a < kAxisCount; ++a) {
-    params_.set(5161 + a, s.g28[a]);
-    params_.set(5181 + a, s.g30[a]);
-    params_.set(5211 + a, s.g92_saved[a]);
-    for (int c = 0; c < kCoordSystems; ++c) params_.set(5221 + 20 * c + a, s.g5x[c][a]);
+    put(5161 + a, s.g28[a]);
+    put(5181 + a, s.g30[a]);
+    put(5211 + a, s.g92_saved[a]);
+    for (int c = 0; c < kCoordSystems; ++c) put(5221 + 20 * c + a, s.g5x[c][a]);
   }
-  for (int c = 0; c < kCoordSystems; ++c) params_.set(5230 + 20 * c, s.rotation[c]);
-  params_.set(5210, s.g92_applied ? 1.0 : 0.0);
-  params_.set(5220, s.coord_system + 1);
+  for (int c = 0; c < kCoordSystems; ++c) put(5230 + 20 * c, s.rotation[c]);
+  put(5210, s.g92_applied ? 1.0 : 0.0);
+  put(5220, s.coord_system + 1);
 }
 
 }  // namespace mdhd::gcode

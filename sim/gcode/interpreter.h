@@ -8,6 +8,7 @@
 //
 // run() throws GcodeError (file, line, column, message) at the first rejected
 // block; motions of the blocks before it have been delivered.
+#include <array>
 #include <memory>
 
 #include "sim/gcode/block_executor.h"
@@ -37,7 +38,9 @@ class Interpreter {
   BlockExecutor executor_;
   ParameterStore params_;
   std::uint64_t blocks_ = 0;
-  int probe_published_ = 0;  // probe_count last written to #5061..#5070
+  int probe_published_ = 0;                           // probe_count last written to #5061..#5070
+  static constexpr int kFirstOffsetParameter = 5161;  // #5161 .. #5389
+  std::array<double, 5389 - kFirstOffsetParameter + 1> published_offsets_;
 };
 
 }  // namespace mdhd::gcode
