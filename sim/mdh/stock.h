@@ -13,6 +13,7 @@
 #include "sim/geometry/line_solid.h"
 #include "sim/mdh/cell.h"
 #include "sim/mdh/cut_counters.h"
+#include "sim/mdh/line_segments.h"
 #include "sim/mdh/split_rules.h"
 #include "sim/mdh/stats.h"
 
@@ -42,9 +43,15 @@ struct Overlap {
   double max_length = 0.0;  // mm, longest overlap along one grid line
 };
 
+// Machined surface area by outward normal, as projections: by_direction[+a]
+// is the integral of max(0, n.a) dA (the surface facing +a, projected along
+// a), counted from the crossings of all grid lines (uncut stock faces are
+// not counted). overhang = the -z entry: downward-facing surface projected
+// on the xy plane, which no +z heightmap can hold. total = their sum (at
+// most sqrt(3) times the true area).
 struct SurfaceArea {
-  std::array<double, 6> by_direction{};  // mm^2 by dominant outward normal: +x -x +y -y +z -z
-  double overhang = 0.0;                 // mm^2 with outward normal n.z < -0.01
+  std::array<double, 6> by_direction{};  // mm^2: +x -x +y -y +z -z
+  double overhang = 0.0;
   double total = 0.0;
 };
 
@@ -87,6 +94,8 @@ class Stock {
     return b[0] + bricks_[0] * (b[1] + bricks_[1] * b[2]);
   }
   const Cell* leafAt(const glm::dvec3& g) const;
+  // Solid segments (grid units, merged across cells) of one grid line.
+  void gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const;
 
   StockOptions options_;
   GridSpec grid_;

@@ -4,8 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <glm/geometric.hpp>
-
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/stock.h"
 
@@ -126,22 +124,10 @@ void Stock::solidIntervals(int axis, int iu, int iv, std::vector<geom::Interval>
   if (axis < 0 || axis > 2 || iu < 0 || iu > grid_.cubes[u] || iv < 0 || iv > grid_.cubes[v])
     throw std::out_of_range("mdh: grid line (" + std::to_string(axis) + ", " + std::to_string(iu) +
                             ", " + std::to_string(iv) + ") is outside the stock");
-  std::array<int, 3> at{};
-  at[u] = iu;
-  at[v] = iv;
-  std::array<int, 3> b{};
-  b[u] = std::min(iu / brickSize_[u], bricks_[u] - 1);
-  b[v] = std::min(iv / brickSize_[v], bricks_[v] - 1);
   std::vector<Span> segs;
-  for (b[axis] = 0; b[axis] < bricks_[axis]; ++b[axis])
-    lineSegments(roots_[brickIndex(b)], axis, at, segs);
+  gridLineSegments(axis, iu, iv, segs);
   for (const Span& s : segs) {
-    const double lo = grid_.toMm(axis, s.lo), hi = grid_.toMm(axis, s.hi);
-    if (!out.empty() && s.lo <= grid_.toGrid(axis, out.back().hi) + 1e-9) {
-      out.back().hi = std::max(out.back().hi, hi);
-    } else {
-      out.push_back({lo, hi});
-    }
+    out.push_back({grid_.toMm(axis, s.lo), grid_.toMm(axis, s.hi)});
   }
 }
 
@@ -156,46 +142,49 @@ double Stock::volume() const {
   return v * grid_.h * grid_.h * grid_.h;
 }
 
+void Stock::gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const {
+  out.clear();
+  const int u = axisU(axis), v = axisV(axis);
+  std::array<int, 3> at{};
+  at[u] = iu;
+  at[v] = iv;
+  std::array<int, 3> b{};
+  b[u] = std::min(iu / brickSize_[u], bricks_[u] - 1);
+  b[v] = std::min(iv / brickSize_[v], bricks_[v] - 1);
+  std::vector<Span> segs;
+  for (b[axis] = 0; b[axis] < bricks_[axis]; ++b[axis])
+    lineSegments(roots_[brickIndex(b)], axis, at, segs);
+  for (const Span& s : segs) {
+    if (!out.empty() && s.lo <= out.back().hi + 1e-9)
+      out.back().hi = std::max(out.back().hi, s.hi);
+    else
+      out.push_back(s);
+  }
+}
+
 SurfaceArea Stock::area() const {
+  // Projected areas from the crossings of every grid line: each crossing of
+  // an a line stands for h^2 of surface projected along a, signed by which
+  // side is solid. Uses all three families of samples, and is exact for
+  // faces on grid planes whatever the cells' directions.
   SurfaceArea out;
   const double h2 = grid_.h * grid_.h;
-  forEachLeaf([&](const LeafView& leaf) {
-    if (!leaf.map) return;
-    const ThreeMap& m = *leaf.map;
-    const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
-    const double lo = leaf.box.lo[a], hi = leaf.box.hi[a];
-    auto corner = [&](int iu, int iv) {
-      glm::dvec3 p;
-      p[a] = std::clamp(m.height(iu, iv), lo, hi);
-      p[u] = iu;
-      p[v] = iv;
-      return p;
-    };
-    auto triangle = [&](glm::dvec3 p0, glm::dvec3 p1, glm::dvec3 p2) {
-      // Triangles lying in the cell's own face are cell boundary, not surface.
-      if ((p0[a] == lo && p1[a] == lo && p2[a] == lo) ||
-          (p0[a] == hi && p1[a] == hi && p2[a] == hi))
-        return;
-      glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
-      if (n[a] * m.direction().sign < 0) n = -n;
-      const double len = std::sqrt(glm::dot(n, n));
-      if (len == 0.0) return;
-      const double area = 0.5 * len * h2;
-      int dom = 0;
-      for (int k = 1; k < 3; ++k)
-        if (std::abs(n[k]) > std::abs(n[dom])) dom = k;
-      out.by_direction[dom * 2 + (n[dom] < 0 ? 1 : 0)] += area;
-      if (n[2] / len < -0.01) out.overhang += area;
-      out.total += area;
-    };
-    for (int iv = 0; iv + 1 < m.columnsV(); ++iv)
-      for (int iu = 0; iu + 1 < m.columnsU(); ++iu) {
-        const auto p00 = corner(iu, iv), p10 = corner(iu + 1, iv);
-        const auto p01 = corner(iu, iv + 1), p11 = corner(iu + 1, iv + 1);
-        triangle(p00, p10, p11);
-        triangle(p00, p11, p01);
+  std::vector<Span> segs;
+  for (int a = 0; a < 3; ++a) {
+    const int u = axisU(a), v = axisV(a), n = grid_.cubes[a];
+    for (int iv = 0; iv <= grid_.cubes[v]; ++iv)
+      for (int iu = 0; iu <= grid_.cubes[u]; ++iu) {
+        const double w = (iu == 0 || iu == grid_.cubes[u] ? 0.5 : 1.0) *
+                         (iv == 0 || iv == grid_.cubes[v] ? 0.5 : 1.0) * h2;
+        gridLineSegments(a, iu, iv, segs);
+        for (const Span& s : segs) {
+          if (s.lo > 1e-9) out.by_direction[2 * a + 1] += w;  // solid above: faces -a
+          if (s.hi < n - 1e-9) out.by_direction[2 * a] += w;
+        }
       }
-  });
+  }
+  out.overhang = out.by_direction[5];
+  for (double x : out.by_direction) out.total += x;
   return out;
 }
 
@@ -205,31 +194,21 @@ Overlap Stock::probe(const geom::LineSolid& solid, double tolerance) const {
   const GridBox& t = cache.touched();
   if (t.empty()) return out;
   const double h = grid_.h;
-  forEachLeaf([&](const LeafView& leaf) {
-    const GridBox region = leaf.box.intersect(t);
-    if (region.empty() || leaf.state == CellState::kEmpty) return;
-    const int a = leaf.map ? leaf.map->axis() : 2, u = axisU(a), v = axisV(a);
-    std::array<int, 3> at{};
-    std::vector<Span> segs;
-    for (at[v] = region.lo[v]; at[v] <= region.hi[v]; ++at[v])
-      for (at[u] = region.lo[u]; at[u] <= region.hi[u]; ++at[u]) {
-        const auto tool = cache.line(a, at[u], at[v]);
-        if (tool.empty()) continue;
-        segs.clear();
-        if (leaf.map)
-          partialSegments(*leaf.map, a, at, segs);
-        else
-          segs.push_back({double(leaf.box.lo[a]), double(leaf.box.hi[a])});
-        double len = 0.0;
-        for (const Span& s : segs)
-          for (const Span& x : tool)
-            len += std::max(0.0, std::min(s.hi, x.hi) - std::max(s.lo, x.lo));
-        const double w = ((at[u] == leaf.box.lo[u] || at[u] == leaf.box.hi[u]) ? 0.5 : 1.0) *
-                         ((at[v] == leaf.box.lo[v] || at[v] == leaf.box.hi[v]) ? 0.5 : 1.0);
-        out.volume += w * len * h * h * h;
-        out.max_length = std::max(out.max_length, len * h);
-      }
-  });
+  std::vector<Span> segs;
+  for (int iy = t.lo[1]; iy <= t.hi[1]; ++iy)
+    for (int ix = t.lo[0]; ix <= t.hi[0]; ++ix) {
+      const auto tool = cache.line(2, ix, iy);
+      if (tool.empty()) continue;
+      gridLineSegments(2, ix, iy, segs);
+      double len = 0.0;
+      for (const Span& s : segs)
+        for (const Span& x : tool)
+          len += std::max(0.0, std::min(s.hi, x.hi) - std::max(s.lo, x.lo));
+      const double w = (ix == 0 || ix == grid_.cubes[0] ? 0.5 : 1.0) *
+                       (iy == 0 || iy == grid_.cubes[1] ? 0.5 : 1.0);
+      out.volume += w * len * h * h * h;
+      out.max_length = std::max(out.max_length, len * h);
+    }
   out.touched = out.max_length > tolerance;
   return out;
 }
