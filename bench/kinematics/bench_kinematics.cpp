@@ -4,6 +4,7 @@
 
 #include "sim/kinematics/inverse.h"
 #include "sim/kinematics/joint_path.h"
+#include "sim/kinematics/limits.h"
 #include "sim/kinematics/presets.h"
 
 namespace mdhd::kin {
@@ -61,6 +62,19 @@ void tcpPathPoint(benchmark::State& state) {
   }
 }
 BENCHMARK(tcpPathPoint);
+
+// A whole tcp move checked against limits it stays well inside (the common case).
+void tcpPathLimits(benchmark::State& state) {
+  const Kinematics kin(presets::bcHeadTable());
+  gcode::Motion m;
+  m.type = gcode::MotionType::kFeed;
+  m.tcp = true;
+  m.start = {0, 0, 10, 0, 0, 0, 0, 0, 0};
+  m.end = {20, 10, 10, 0, 45, 30, 0, 0, 0};
+  const JointPath path(kin, m, 50);
+  for (auto _ : state) benchmark::DoNotOptimize(checkLimits(path));
+}
+BENCHMARK(tcpPathLimits);
 
 }  // namespace
 }  // namespace mdhd::kin

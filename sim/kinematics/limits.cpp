@@ -119,10 +119,15 @@ std::optional<LimitViolation> sampledCheck(const JointPath& path, int joint, gco
     const double a = s[i > 0 ? i - 1 : i];
     const double b = s[i + 1 < n ? i + 1 : i];
     if (b <= a) continue;
+    // Between dense samples a smooth joint overshoots its best sample by well under the
+    // step to its neighbours (a quarter of it for a parabola): extremes farther than
+    // twice that from a limit cannot reach it and are not refined.
+    const double margin = 2.0 * std::max(std::abs(v[i] - prev), std::abs(v[i] - next));
     // Strict on one side so that plateaus (a joint that does not move) cost nothing.
     if (v[i] >= prev && v[i] >= next && (v[i] > prev || v[i] > next)) {
-      pts.push_back(goldenMax(f, a, b));
+      if (v[i] + margin >= l.max) pts.push_back(goldenMax(f, a, b));
     } else if (v[i] <= prev && v[i] <= next && (v[i] < prev || v[i] < next)) {
+      if (v[i] - margin > l.min) continue;
       Point p = goldenMax([&](double t) { return -f(t); }, a, b);
       pts.push_back({p.s, -p.v});
     }
