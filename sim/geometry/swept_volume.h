@@ -43,6 +43,10 @@ class SweptVolume final : public LineSolid {
   SweptVolume(const ToolPart& part, std::span<const ToolPose> poses);
 
   Aabb bounds() const override { return bounds_; }
+  // Const and allocation-free beyond `out`, so any number of threads may call it.
+  // Ends where the line crosses the surface are good to ~1e-12 of the part's size;
+  // where it only grazes it (a tangent, a cone's apex) to ~1e-8. Lines that only touch
+  // the solid (zero length) give nothing. Cost grows with translations().size().
   void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const override;
 
   // The translational sweeps this is exactly the union of.
