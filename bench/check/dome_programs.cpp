@@ -1,0 +1,93 @@
+#include "bench/check/dome_programs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace mdhd::bench {
+namespace {
+
+double tipZ(double x, double y, double cx, double cy) {
+  const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+  const double s = (kSphere + kBall) * (kSphere + kBall) - d2;
+  const double dome = s > 0 ? kCentreZ + std::sqrt(s) - kBall : -1e9;
+  return std::max(kFloor, dome);
+}
+
+std::string fmt(const char* f, double a, double b, double c) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, f, a, b, c);
+  return buf;
+}
+
+// The zigzag's points in order: (x, y) of every G1 after the first plunge.
+template <typename Emit>
+void zigzag(int lines, int pts, double x0, double x1, double y0, double y1, Emit emit) {
+  const double dy = (y1 - y0) / (lines - 1), dx = (x1 - x0) / pts;
+  for (int j = 0; j < lines; ++j) {
+    const double y = y0 + j * dy;
+    if (j > 0) emit(j % 2 == 0 ? x0 : x1, y);
+    for (int i = 1; i <= pts; ++i) emit(j % 2 == 0 ? x0 + i * dx : x1 - i * dx, y);
+  }
+}
+
+}  // namespace
+
+double domeZ(double x, double y, double cx, double cy) {
+  const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+  const double s = kSphere * kSphere - d2;
+  return std::max(kFloor, s > 0 ? kCentreZ + std::sqrt(s) : -1e9);
+}
+
+DomeProgram domeProgram(int lines, int pts, bool setup) {
+  DomeProgram p;
+  p.text = "(dome zigzag finishing)\nG21\nG90\nG17\n";
+  if (setup) p.text += "T1 M6\nG43 H1\nM3 S10000\n";
+  p.text += fmt("G0 Z%.4f\n", kSafe, 0, 0);
+  p.text += "G0 X0.0000 Y0.0000\n";
+  p.text += fmt("G1 Z%.4f F1000\n", tipZ(0, 0, 50, 50), 0, 0);
+  p.moves = 3;
+  zigzag(lines, pts, 0, 100, 0, 100, [&](double x, double y) {
+    p.text += fmt("G1 X%.4f Y%.4f Z%.4f\n", x, y, tipZ(x, y, 50, 50));
+    ++p.moves;
+  });
+  p.text += fmt("G0 Z%.4f\n", kSafe, 0, 0);
+  ++p.moves;
+  p.text += "M2\n";
+  return p;
+}
+
+DomeProgram tiltedDomeProgram(const kin::Kinematics& kin, double tool_length, int lines, int pts) {
+  constexpr double kTilt = -15.0;
+  auto cAt = [](double x) { return -30.0 + 60.0 * (x + 50.0) / 100.0; };
+  auto tip = [&](double x, double y, double c) {
+    kin::JointValues q{};
+    q[gcode::kA] = kTilt;
+    q[gcode::kC] = c;
+    const glm::dvec3 axis = kin.toolPose(q, tool_length).axis;
+    const double d2 = x * x + y * y;
+    const double s = (kSphere + kBall) * (kSphere + kBall) - d2;
+    const double cz = std::max(kFloor + kBall, s > 0 ? kCentreZ + std::sqrt(s) : -1e9);
+    return glm::dvec3(x, y, cz) - kBall * axis;
+  };
+  DomeProgram p;
+  p.text = "(tilted ball dome, AC trunnion, G43.4)\nG21 G90 G17\nT1 M6\nM3 S10000\n";
+  p.text += fmt("G0 A%.4f C%.4f\n", kTilt, cAt(-50), 0);
+  p.text += "G43.4 H1\n";
+  const glm::dvec3 t0 = tip(-50, -50, cAt(-50));
+  p.text += fmt("G0 X%.4f Y%.4f Z%.4f\n", t0.x, t0.y, kSafe);
+  p.text += fmt("G1 Z%.4f F1000\n", t0.z, 0, 0);
+  p.moves = 3;
+  zigzag(lines, pts, -50, 50, -50, 50, [&](double x, double y) {
+    const double c = cAt(x);
+    const glm::dvec3 t = tip(x, y, c);
+    p.text += fmt("G1 X%.4f Y%.4f Z%.4f", t.x, t.y, t.z) + fmt(" C%.4f\n", c, 0, 0);
+    ++p.moves;
+  });
+  p.text += fmt("G0 Z%.4f\n", kSafe + 20, 0, 0);
+  ++p.moves;
+  p.text += "G49\nM2\n";
+  return p;
+}
+
+}  // namespace mdhd::bench
