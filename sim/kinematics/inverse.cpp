@@ -17,20 +17,12 @@ constexpr double kSingularDet = 1e-9;
 
 bool solveTip(const Kinematics& kin, const glm::dvec3& tip, double length, JointValues& q) {
   if (!kin.hasXyz()) return false;
-  // Tip(x) = tip0 + J x exactly (affine), so the columns of J are differences of
-  // tips at unit joint steps from x = 0.
-  JointValues p = q;
-  p[gcode::kX] = p[gcode::kY] = p[gcode::kZ] = 0.0;
-  const glm::dvec3 tip0 = kin.toolPose(p, length).tip;
   glm::dmat3 jac;
-  for (int i = 0; i < 3; ++i) {
-    p[static_cast<std::size_t>(i)] = 1.0;
-    jac[i] = kin.toolPose(p, length).tip - tip0;
-    p[static_cast<std::size_t>(i)] = 0.0;
-  }
+  const glm::dvec3 now = kin.tipJacobian(q, length, jac);
   const double det = glm::determinant(jac);
   if (!(std::abs(det) > kSingularDet)) return false;
-  const glm::dvec3 x = glm::inverse(jac) * (tip - tip0);
+  const glm::dvec3 dx = glm::inverse(jac) * (tip - now);
+  const glm::dvec3 x = glm::dvec3(q[gcode::kX], q[gcode::kY], q[gcode::kZ]) + dx;
   if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z)) return false;
   q[gcode::kX] = x.x;
   q[gcode::kY] = x.y;

@@ -63,7 +63,7 @@ int Kinematics::fill(const Machine& m, const std::vector<int>& indices, Chain& c
   return n;
 }
 
-Rigid Kinematics::compose(const Chain& chain, int count, const JointValues& q) {
+Rigid Kinematics::compose(const Chain& chain, int count, const JointValues& q, glm::dmat3* xyz) {
   Rigid acc;
   bool turned = false;  // acc.rotation is still the identity: skip its products
   for (int i = 0; i < count; ++i) {
@@ -72,6 +72,9 @@ Rigid Kinematics::compose(const Chain& chain, int count, const JointValues& q) {
     if (!j.rotary) {
       const glm::dvec3 t = j.origin + v * j.unit;
       acc.translation += turned ? acc.rotation * t : t;
+      if (xyz != nullptr && j.axis <= gcode::kZ) {
+        (*xyz)[j.axis] = turned ? acc.rotation * j.unit : j.unit;
+      }
       continue;
     }
     double s = 0.0;
@@ -93,6 +96,18 @@ ToolPose Kinematics::toolPose(const JointValues& q, double length) const {
   p.axis = t.vector(spindle_axis_);
   p.tip = t.translation - length * p.axis;
   return p;
+}
+
+glm::dvec3 Kinematics::tipJacobian(const JointValues& q, double length, glm::dmat3& jac) const {
+  glm::dmat3 toolDirs(0.0);
+  glm::dmat3 wpDirs(0.0);
+  const Rigid tool = compose(tool_, tool_count_, q, &toolDirs);
+  const Rigid wp = compose(wp_, wp_count_, q, &wpDirs);
+  // Tip in W = R_wp^T (tip in the machine - t_wp): a tool-chain joint moves the tip with
+  // its direction, a workpiece-chain joint moves W, so the tip the opposite way.
+  const glm::dmat3 rt = glm::transpose(wp.rotation);
+  jac = rt * (toolDirs - wpDirs);
+  return rt * (tool.point(-length * spindle_axis_) - wp.translation);
 }
 
 }  // namespace mdhd::kin

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/mat3x3.hpp>
+
 #include "sim/kinematics/machine.h"
 #include "sim/kinematics/rigid.h"
 
@@ -54,6 +56,11 @@ class Kinematics {
   // The tip and axis in W of a tool of `length` (gauge point to tip).
   ToolPose toolPose(const JointValues& q, double length) const;
 
+  // The tip in W at q and, as the columns of `jac`, how it moves per unit of the X, Y
+  // and Z joints (zero columns for letters the machine lacks). With the other joints
+  // fixed the tip is affine in X, Y, Z, so tip(q + dx) = tip + jac dx exactly.
+  glm::dvec3 tipJacobian(const JointValues& q, double length, glm::dmat3& jac) const;
+
  private:
   // One joint of a chain with the parts of its transform that do not depend on q.
   struct ChainJoint {
@@ -67,7 +74,9 @@ class Kinematics {
   using Chain = std::array<ChainJoint, gcode::kAxisCount>;
 
   static ChainJoint compile(const Joint& joint);
-  static Rigid compose(const Chain& chain, int count, const JointValues& q);
+  // `xyz`, when given, receives the base-frame direction of each of the chain's X, Y, Z.
+  static Rigid compose(const Chain& chain, int count, const JointValues& q,
+                       glm::dmat3* xyz = nullptr);
   static int fill(const Machine& m, const std::vector<int>& indices, Chain& chain);
 
   Machine machine_;

@@ -55,6 +55,60 @@ TEST(SolveTip, RoundTripsOnEveryPresetForRandomPoses) {
   }
 }
 
+// A moving-table mill: X and Y carry the trunnion (table moves opposite to the joint so
+// that +X still moves the tool +X relative to the part), Z carries the spindle.
+Machine movingTable() {
+  Machine m = presets::acTrunnion();
+  m.joints[0].axis = {-1, 0, 0};
+  m.joints[1].axis = {0, -1, 0};
+  m.tool_chain = {2};
+  m.workpiece_chain = {0, 1, 3, 4};
+  return m;
+}
+
+TEST(SolveTip, JacobianMatchesFiniteDifferences) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const Machine& m : {presets::bcTrunnion(), presets::nutatingB45(), movingTable()}) {
+    const Kinematics kin(m);
+    for (int i = 0; i < 20; ++i) {
+      JointValues q{100 * u(rng),
+                    100 * u(rng),
+                    100 * u(rng),
+                    90 * u(rng),
+                    90 * u(rng),
+                    180 * u(rng),
+                    0,
+                    0,
+                    0};
+      glm::dmat3 jac;
+      const glm::dvec3 tip = kin.tipJacobian(q, 40, jac);
+      EXPECT_VEC_NEAR(tip, kin.toolPose(q, 40).tip, 1e-12);
+      for (int c = 0; c < 3; ++c) {
+        JointValues step = q;
+        step[static_cast<std::size_t>(c)] += 2.5;
+        EXPECT_VEC_NEAR((kin.toolPose(step, 40).tip - tip) / 2.5, jac[c], 1e-12);
+      }
+    }
+  }
+}
+
+TEST(SolveTip, MovingTableRoundTrips) {
+  const Kinematics kin(movingTable());
+  // All zero but X 10: the table moved -10, so the tool sits at x = +10 in W.
+  JointValues q{};
+  q[gcode::kX] = 10;
+  EXPECT_VEC_NEAR(kin.toolPose(q, 0).tip, glm::dvec3(10, 0, 0), 1e-12);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 100; ++i) {
+    JointValues r{0, 0, 0, 90 * u(rng), 0, 180 * u(rng), 0, 0, 0};
+    const glm::dvec3 tip{200 * u(rng), 200 * u(rng), 200 * u(rng)};
+    ASSERT_TRUE(solveTip(kin, tip, 55, r));
+    EXPECT_VEC_NEAR(kin.toolPose(r, 55).tip, tip, 1e-9);
+  }
+}
+
 TEST(SolveTip, SingularMachineIsReported) {
   // Y parallel to X: no joint moves the tip along y.
   Machine m = presets::threeAxisMill();
