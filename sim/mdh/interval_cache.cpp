@@ -51,30 +51,36 @@ void IntervalCache::fill(int axis, Row& row, int iv) const {
   const int u = axisU(axis), v = axisV(axis);
   const double vmm = grid_.toMm(v, iv);
   std::vector<geom::Interval> buf;
-  std::vector<std::vector<Span>> lines(touched_.points(u));
-  int first = -1, last = -1;
+  int first = -1;
   for (int iu = touched_.lo[u]; iu <= touched_.hi[u]; ++iu) {
     buf.clear();
     solid_.lineIntervals(axis, grid_.toMm(u, iu), vmm, buf);
     row.calls.fetch_add(1, std::memory_order_relaxed);
-    auto& line = lines[iu - touched_.lo[u]];
+    const std::size_t start = row.spans.size();
     for (const geom::Interval& i : buf) {
       const Span s{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
-      if (s.hi > s.lo) line.push_back(s);
+      if (s.hi > s.lo) row.spans.push_back(s);  // drops NaN and inverted intervals
     }
-    if (!line.empty()) {
-      if (first < 0) first = iu;
-      last = iu;
+    // The contract says sorted and disjoint; make sure, the arithmetic relies on it.
+    const auto begin = row.spans.begin() + static_cast<std::ptrdiff_t>(start);
+    auto byLo = [](const Span& x, const Span& y) { return x.lo < y.lo; };
+    if (!std::is_sorted(begin, row.spans.end(), byLo)) std::sort(begin, row.spans.end(), byLo);
+    std::size_t kept = start;
+    for (std::size_t k = start; k < row.spans.size(); ++k) {
+      if (kept > start && row.spans[k].lo <= row.spans[kept - 1].hi)
+        row.spans[kept - 1].hi = std::max(row.spans[kept - 1].hi, row.spans[k].hi);
+      else
+        row.spans[kept++] = row.spans[k];
     }
+    row.spans.resize(kept);
+    if (kept == start && first < 0) continue;  // leading empty lines are not stored
+    if (first < 0) first = iu;
+    row.offsets.push_back(static_cast<std::uint32_t>(start));
   }
   if (first < 0) return;
+  // Trailing empty lines are dropped too: the row keeps its own extent.
+  while (row.offsets.size() > 1 && row.offsets.back() == row.spans.size()) row.offsets.pop_back();
   row.first = first;
-  row.offsets.reserve(last - first + 2);
-  for (int iu = first; iu <= last; ++iu) {
-    row.offsets.push_back(static_cast<std::uint32_t>(row.spans.size()));
-    const auto& line = lines[iu - touched_.lo[u]];
-    row.spans.insert(row.spans.end(), line.begin(), line.end());
-  }
   row.offsets.push_back(static_cast<std::uint32_t>(row.spans.size()));
 }
 

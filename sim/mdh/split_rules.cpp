@@ -44,9 +44,14 @@ double score(Rule rule, const SplitCandidate& c, const SelectionContext& ctx) {
 
 void keepBest(std::vector<std::size_t>& ties, Rule rule,
               const std::vector<SplitCandidate>& candidates, const SelectionContext& ctx) {
+  // NaN scores (a degenerate tool direction) rank lowest, so a tie set never empties.
+  auto value = [&](std::size_t i) {
+    const double x = score(rule, candidates[i], ctx);
+    return std::isnan(x) ? -1e300 : x;
+  };
   double best = -1e300;
-  for (std::size_t i : ties) best = std::max(best, score(rule, candidates[i], ctx));
-  std::erase_if(ties, [&](std::size_t i) { return score(rule, candidates[i], ctx) != best; });
+  for (std::size_t i : ties) best = std::max(best, value(i));
+  std::erase_if(ties, [&](std::size_t i) { return value(i) != best; });
 }
 
 }  // namespace

@@ -68,8 +68,13 @@ Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(o
 
 Stock::~Stock() = default;
 
-CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& tool_direction) {
+CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirection) {
   ++step_;
+  // A missing or broken tool axis only weakens the direction guesses and CTD.
+  glm::dvec3 tool_direction = toolDirection;
+  if (!std::isfinite(tool_direction.x + tool_direction.y + tool_direction.z) ||
+      tool_direction == glm::dvec3(0.0))
+    tool_direction = {0.0, 0.0, 1.0};
   CutResult result;
   const IntervalCache cache(grid_, solid);
   const GridBox& t = cache.touched();

@@ -82,7 +82,7 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
   // once per column; the walk up to e0 only sums how many crossings to skip.
   std::vector<int> counts;
   auto rowIntegrals = [&](int family, int r, int e0, int e1, std::vector<double>& out) {
-    out.assign(e1 - e0, 0.0);
+    out.resize(e1 - e0);
     counts.resize(e1 + 1);
     for (int e = 0; e <= e1; ++e) counts[e] = solidCount(rowHeight(family, r, e));
     std::size_t pos = 0;

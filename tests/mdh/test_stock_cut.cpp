@@ -1,6 +1,7 @@
 #include "sim/mdh/stock.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -134,6 +135,40 @@ TEST(StockCut, SolidIntervalsRejectsLinesOutsideTheGrid) {
   std::vector<geom::Interval> iv;
   EXPECT_THROW(s.solidIntervals(2, 101, 0, iv), std::out_of_range);
   EXPECT_THROW(s.solidIntervals(0, -1, 0, iv), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace mdhd::mdh
+
+namespace mdhd::mdh {
+namespace {
+
+// A solid that answers with garbage: NaN, infinite and inverted intervals.
+class BrokenSolid : public geom::LineSolid {
+ public:
+  geom::Aabb bounds() const override { return {{2, 2, 2}, {4, 4, 7}}; }
+  void lineIntervals(int, double u, double, std::vector<geom::Interval>& out) const override {
+    out.push_back({std::nan(""), 3.0});
+    out.push_back({5.0, 1.0});
+    if (u > 3) out.push_back({-std::numeric_limits<double>::infinity(), 4.5});
+  }
+};
+
+TEST(StockCut, GarbageSolidsAndDirectionsNeitherCrashNorBreakInvariants) {
+  Stock s(kStock, options());
+  s.cut(BrokenSolid(), {std::nan(""), 0, 0});
+  s.cut(SphereSolid({5, 4, 6}, 1.0), {0, 0, 0});
+  s.cut(testing::CylinderSolid({5, -1, 3}, {0, 1, 0}, 0.5, 10), {std::nan(""), 1, 0});
+  EXPECT_NO_THROW(s.checkInvariants());
+  EXPECT_LT(s.volume(), 480.0);
+  EXPECT_GT(s.volume(), 400.0);
+  geom::Aabb nanBounds{{std::nan(""), 0, 0}, {1, 1, 1}};
+  struct NanBox : BrokenSolid {
+    geom::Aabb b;
+    geom::Aabb bounds() const override { return b; }
+  } nanBox;
+  nanBox.b = nanBounds;
+  EXPECT_FALSE(s.cut(nanBox, {0, 0, 1}).touched);
 }
 
 }  // namespace
