@@ -83,7 +83,7 @@ double sweptSignedDistance(const geom::SweptVolume& sweep, const geom::ToolPart&
 
 Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& part,
                         const geom::Aabb& within, const LineGrid& grid,
-                        const MaterialLine& material) {
+                        const MaterialLine& material, bool measure) {
   Penetration out;
   const geom::Aabb box = intersect(sweep.bounds(), within);
   if (isEmpty(box) || part.empty()) return out;
@@ -112,6 +112,7 @@ Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& pa
         const double lo = std::max(o.lo, box.lo.z), hi = std::min(o.hi, box.hi.z);
         if (!(hi > lo)) continue;
         out.max_overlap = std::max(out.max_overlap, hi - lo);
+        if (!measure) continue;
         const int n = std::clamp(static_cast<int>(std::ceil((hi - lo) / grid.h)) + 1, 2,
                                  kMaxDepthSamplesPerOverlap);
         for (int k = 0; k < n; ++k) {

@@ -37,10 +37,10 @@ struct Penetration {
 };
 
 // `within`: only this box of the part's bounds is sampled (e.g. its overlap with a
-// fixture); lines outside `grid` are skipped.
+// fixture); lines outside `grid` are skipped. `measure` false: only max_overlap.
 Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& part,
                         const geom::Aabb& within, const LineGrid& grid,
-                        const MaterialLine& material);
+                        const MaterialLine& material, bool measure = true);
 
 // Signed distance from p to the part swept along the sweep: min over its translations
 // of the min over the translation of the part's distance (each convex body's is

@@ -21,6 +21,16 @@ void Episodes::touch(const EpisodeKey& key, double depth, int line,
   it->second.touched = true;
 }
 
+double Episodes::overlapSeen(const EpisodeKey& key) const {
+  const auto it = open_.find(key);
+  return it == open_.end() ? -1.0 : it->second.overlap;
+}
+
+void Episodes::noteOverlap(const EpisodeKey& key, double overlap) {
+  if (const auto it = open_.find(key); it != open_.end())
+    it->second.overlap = std::max(it->second.overlap, overlap);
+}
+
 void Episodes::endStep(bool motionScope) {
   for (auto it = open_.begin(); it != open_.end();) {
     const bool perMotion = it->first.type == CollisionType::kAxisLimit;

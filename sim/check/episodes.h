@@ -28,6 +28,10 @@ class Episodes {
              const std::function<Collision()>& start);
   // Whether an episode of `key` is open (touched by the previous step).
   bool isOpen(const EpisodeKey& key) const { return open_.count(key) != 0; }
+  // The longest overlap (mm along a grid line) noted for the open episode of `key`,
+  // or -1 when none is open: a step that overlaps no more need not be measured again.
+  double overlapSeen(const EpisodeKey& key) const;
+  void noteOverlap(const EpisodeKey& key, double overlap);
   // Ends a step: episodes of `scope` not touched since the last endStep are closed.
   // Scopes keep per-step contacts apart from per-motion ones (axis limits).
   void endStep(bool motionScope);
@@ -39,6 +43,7 @@ class Episodes {
   struct Open {
     std::size_t index = 0;
     bool touched = false;
+    double overlap = 0.0;
   };
   std::map<EpisodeKey, Open> open_;
   std::vector<Collision> collisions_;

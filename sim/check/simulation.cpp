@@ -282,10 +282,20 @@ void Simulation::stockContacts(const Step& step) {
       {step.holder, step.parts.holder, CollisionType::kHolderContact, ToolPartName::kHolder},
   };
   for (const auto& check : checks) {
-    if (!check.sweep || !stock_->probe(*check.sweep, contact_tolerance_).touched) continue;
+    if (!check.sweep) continue;
+    const mdh::Overlap overlap = stock_->probe(*check.sweep, contact_tolerance_);
+    if (!overlap.touched) continue;
+    const EpisodeKey key{check.type, check.name, -1, -1};
+    // A continuing contact that reaches no further along any grid line than before
+    // cannot be much deeper: keep the episode open without measuring it again.
+    const double seen = episodes_.overlapSeen(key);
+    if (seen >= 0.0 && overlap.max_length <= seen + stock_->grid().h) {
+      episodes_.touch(key, 0.0, step.m.pos.line, [] { return Collision{}; });
+      continue;
+    }
     const Penetration p = penetration(*check.sweep, check.part, all, stockLines(*stock_), material);
     if (!(p.depth > contact_tolerance_)) continue;
-    episodes_.touch({check.type, check.name, -1, -1}, p.depth, step.m.pos.line, [&] {
+    episodes_.touch(key, p.depth, step.m.pos.line, [&] {
       const double f = firstContact(step, check.part, [&](const geom::SweptVolume& s) {
         return stock_->probe(s, contact_tolerance_).touched;
       });
@@ -293,6 +303,7 @@ void Simulation::stockContacts(const Step& step) {
       c.part = check.name;
       return c;
     });
+    episodes_.noteOverlap(key, overlap.max_length);
   }
 }
 
@@ -320,9 +331,18 @@ void Simulation::fixtureContacts(const Step& step) {
       if (part.sweep == nullptr || part.part.empty() ||
           isEmpty(intersect(part.sweep->bounds(), fb)))
         continue;
+      const EpisodeKey key{CollisionType::kFixtureContact, part.name, static_cast<int>(i), -1};
+      // As for the stock: a continuing contact that overlaps no further is not re-measured.
+      if (const double seen = episodes_.overlapSeen(key); seen >= 0.0) {
+        const double overlap =
+            penetration(*part.sweep, part.part, fb, lines, material, false).max_overlap;
+        if (overlap > contact_tolerance_ && overlap <= seen + g.h) {
+          episodes_.touch(key, 0.0, step.m.pos.line, [] { return Collision{}; });
+          continue;
+        }
+      }
       const Penetration p = penetration(*part.sweep, part.part, fb, lines, material);
       if (!(p.depth > contact_tolerance_)) continue;
-      const EpisodeKey key{CollisionType::kFixtureContact, part.name, static_cast<int>(i), -1};
       episodes_.touch(key, p.depth, step.m.pos.line, [&] {
         const double f = firstContact(step, part.part, [&](const geom::SweptVolume& s) {
           return penetration(s, part.part, fb, lines, material).depth > contact_tolerance_;
@@ -332,6 +352,7 @@ void Simulation::fixtureContacts(const Step& step) {
         c.fixture = static_cast<int>(i);
         return c;
       });
+      episodes_.noteOverlap(key, p.max_overlap);
     }
   }
 }
