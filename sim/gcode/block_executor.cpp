@@ -23,6 +23,28 @@ void BlockExecutor::execute(const Block& block) {
   readBlockWords(block, config_.axis_mask, words_);
   InterpState working = state_;
   Step st{block, words_, working};
+  nurbs_mark_ = nurbs_.size();
+  nurbs_cleared_ = false;
+  try {
+    executeSteps(st);
+  } catch (...) {
+    if (nurbs_cleared_) nurbs_.swap(nurbs_backup_);
+    nurbs_.resize(nurbs_mark_);
+    throw;
+  }
+  state_ = working;
+}
+
+void BlockExecutor::clearNurbs() {
+  if (!nurbs_cleared_) {
+    nurbs_backup_.swap(nurbs_);  // kept whole until the block succeeds
+    nurbs_cleared_ = true;
+  }
+  nurbs_.clear();
+}
+
+void BlockExecutor::executeSteps(Step& st) {
+  const Block& block = st.block;
   checkWordUse(st);
   for (const std::string& text : block.messages) {
     Event e;
@@ -34,7 +56,6 @@ void BlockExecutor::execute(const Block& block) {
   runNonModal(st);
   if (st.motion >= 0) runMotion(st);
   runStop(st);
-  state_ = working;
 }
 
 void BlockExecutor::finish(const Block& last) {
@@ -77,8 +98,13 @@ bool isCompOn(int g7) {
 // Words no code of the block uses, in LinuxCNC's words (check_other_codes);
 // `motion` is the motion the block will execute (-1: none).
 void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
-  const bool arc = motion == 20 || motion == 30;
+  constexpr auto bit = [](char c) { return 1u << (c - 'A'); };
+  constexpr std::uint32_t kChecked = bit('D') | bit('E') | bit('H') | bit('I') | bit('J') |
+                                     bit('K') | bit('L') | bit('P') | bit('Q') | bit('R');
   const bool cycle = isCycle(motion);
+  // Most blocks (G1 X Y Z F) have none of these: nothing to check.
+  if (!(w.letters & kChecked) && !cycle && motion != 330 && motion != 331) return;
+  const bool arc = motion == 20 || motion == 30;
   const int g0 = w.g[kGNonModal];
   const bool g10 = g0 == 100;
   auto reject = [&](char c, bool unused, const char* text) {

@@ -11,6 +11,7 @@
 #include "sim/gcode/interpreter_config.h"
 #include "sim/gcode/motion_output.h"
 #include "sim/gcode/parameters.h"
+#include "sim/gcode/spline_math.h"
 
 namespace mdhd::gcode {
 
@@ -33,7 +34,7 @@ class BlockExecutor {
   const BlockWords& lastWords() const { return words_; }
   // Machine values where the last motion ended.
   const AxisValues& machinePosition() const { return out_.machine(); }
-  // LinuxCNC keeps offsets and stored positions in parameters (#5161..#5389,
+  // LinuxCNC keeps offsets and stored positions in parameters (#5161..#5390,
   // machine units = mm here) that a program may also write; they take effect
   // when the interpreter reads them: selecting a coordinate system, G10 L2/L20,
   // M2/M30 (G54), G92.3 and G28/G30. Without parameters the state is all there is.
@@ -56,6 +57,7 @@ class BlockExecutor {
     Event event;
   };
 
+  void executeSteps(Step& st);
   void checkWordUse(Step& st);
   void runModes(Step& st);
   void runNonModal(Step& st);
@@ -116,6 +118,14 @@ class BlockExecutor {
   double endpoint_[2] = {0, 0};
   bool endpoint_valid_ = false;
   const ParameterStore* params_ = nullptr;
+  // G5.2 control points collected so far (program frame, mm). Kept out of
+  // InterpState so that the per-block copy stays cheap; a rejected block puts
+  // them back as they were (nurbs_mark_, nurbs_backup_).
+  std::vector<ControlPoint> nurbs_;
+  std::vector<ControlPoint> nurbs_backup_;
+  std::size_t nurbs_mark_ = 0;
+  bool nurbs_cleared_ = false;
+  void clearNurbs();
 };
 
 }  // namespace mdhd::gcode

@@ -64,17 +64,17 @@ void BlockExecutor::nurbsPoint(Step& st) {
   if (w.has('X') != w.has('Y'))
     st.fail("You must specify both X and Y coordinates for Control Points", column);
   const bool xy = w.has('X');
-  if (s.motion != 52) s.nurbs.clear();
+  if (s.motion != 52) clearNurbs();
   const double p = w.has('P') ? w.get('P') : -1.0;
-  if (!xy && p > 0 && !s.nurbs.empty())
+  if (!xy && p > 0 && !nurbs_.empty())
     st.fail("Can specify P without X and Y only for the first control point", column);
   if (xy && p <= 0) st.fail("Must specify positive weight P for every Control Point", column);
   if (s.feed_mode == FeedMode::kUnitsPerMinute && s.feed == 0.0)
     st.fail("Cannot make a NURBS with 0 feedrate", column);
   for (char c : {'Z', 'A', 'B', 'C', 'U', 'V', 'W'})
     if (w.has(c)) st.failWord(c, "NURBS control points have X and Y only");
-  if (s.nurbs.empty()) {
-    s.nurbs.push_back({s.current[kX], s.current[kY], !xy && p > 0 ? p : 1.0});
+  if (nurbs_.empty()) {
+    nurbs_.push_back({s.current[kX], s.current[kY], !xy && p > 0 ? p : 1.0});
     s.nurbs_order = 3;
   }
   if (w.has('L')) {
@@ -84,7 +84,7 @@ void BlockExecutor::nurbsPoint(Step& st) {
   }
   if (xy) {
     const AxisValues end = findEnd(st);
-    s.nurbs.push_back({end[kX], end[kY], p});
+    nurbs_.push_back({end[kX], end[kY], p});
   }
 }
 
@@ -93,15 +93,15 @@ void BlockExecutor::nurbsEnd(Step& st) {
   InterpState& s = st.s;
   const int column = st.w.g_column[kGNonModal];
   if (s.motion != 52) st.fail("Cannot use G5.3 without G5.2 first", column);
-  if (static_cast<int>(s.nurbs.size()) < s.nurbs_order)
+  if (static_cast<int>(nurbs_.size()) < s.nurbs_order)
     st.fail("You must specify a number of control points at least equal to the order L = " +
                 std::to_string(s.nurbs_order),
             column);
   if (s.feed_mode == FeedMode::kInverseTime && !st.w.has('F'))
     st.fail("F word missing with inverse time arc move", column);
-  const ControlPoint last = s.nurbs.back();
-  const NurbsCurve curve(std::move(s.nurbs), s.nurbs_order);
-  s.nurbs.clear();
+  const ControlPoint last = nurbs_.back();
+  const NurbsCurve curve(nurbs_, s.nurbs_order);
+  clearNurbs();
   std::vector<PlanePoint> polyline;
   flattenCurve(curve, {last.x, last.y}, config_.spline_tolerance, polyline);
   emitCurve(st, polyline);

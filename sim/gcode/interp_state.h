@@ -3,10 +3,8 @@
 // Blocks are transactions: the executor works on a copy and commits it only
 // when the whole block succeeded.
 #include <array>
-#include <vector>
 
 #include "sim/gcode/motion.h"
-#include "sim/gcode/spline_math.h"
 
 namespace mdhd::gcode {
 
@@ -65,10 +63,8 @@ struct InterpState {
   bool probe_tripped = false;
   int probe_count = 0;
   CycleMemory cycle;
-  // G5.2: the NURBS collected so far (program frame, mm), drawn at G5.3.
-  std::vector<ControlPoint> nurbs;
-  int nurbs_order = 3;
-  bool ended = false;  // M2/M30 seen
+  int nurbs_order = 3;  // G5.2 L (the points are BlockExecutor's, not copied per block)
+  bool ended = false;   // M2/M30 seen
 };
 
 }  // namespace mdhd::gcode

@@ -39,8 +39,8 @@ class Interpreter {
   ParameterStore params_;
   std::uint64_t blocks_ = 0;
   int probe_published_ = 0;                           // probe_count last written to #5061..#5070
-  static constexpr int kFirstOffsetParameter = 5161;  // #5161 .. #5389
-  std::array<double, 5389 - kFirstOffsetParameter + 1> published_offsets_;
+  static constexpr int kFirstOffsetParameter = 5161;  // #5161 .. #5390 (G59.3 rotation)
+  std::array<double, 5390 - kFirstOffsetParameter + 1> published_offsets_;
 };
 
 }  // namespace mdhd::gcode

@@ -44,6 +44,17 @@ TEST(OffsetParameters, SelectingASystemReadsItsParameters) {
   EXPECT_DOUBLE_EQ(r.motions[0].end[kY], -3.0);
 }
 
+TEST(OffsetParameters, RotationsToo) {
+  // #5250: G55's XY rotation; #5390 (G59.3's, the last offset parameter).
+  Result r = run("#5250=90\nG55 G0 X1 Y0\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  EXPECT_NEAR(r.motions[0].end[kX], 0.0, 1e-12);
+  EXPECT_NEAR(r.motions[0].end[kY], 1.0, 1e-12);
+  r = run("G10 L2 P9 R30\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  EXPECT_DOUBLE_EQ(r.param(5390), 30.0);
+}
+
 TEST(OffsetParameters, TheActiveSystemChangesOnlyWhenReselected) {
   const Result r = run("#5221=5\nG0 X0\nG54\nG0 X0\n");
   ASSERT_FALSE(r.error) << r.error->what();
