@@ -140,7 +140,7 @@ protocol::ModbusMap chooseMap(const SimArgs& a, const std::optional<nlohmann::js
     // Either the block itself or a document holding it (a shadow request, a job).
     if (doc.is_object() && doc.contains("modbus"))
       return protocol::modbusMapFromJson(doc["modbus"], "modbus", &machine);
-    return protocol::modbusMapFromJson(doc, "(map)", &machine);
+    return protocol::modbusMapFromJson(doc, "modbus", &machine);
   }
   if (job_block) return protocol::modbusMapFromJson(*job_block, "modbus", &machine);
   return protocol::defaultModbusMap(machine);

@@ -64,7 +64,6 @@ ModbusServer::ModbusServer(ModbusServerOptions options) : options_(std::move(opt
     stop();
     throw ModbusServerError("cannot allocate the Modbus context or register mapping");
   }
-  modbus_set_byte_timeout(ctx_, 0, static_cast<std::uint32_t>(options_.byte_timeout_ms) * 1000);
   shared_registers_.assign(static_cast<std::size_t>(options_.registers), 0);
   shared_coils_.assign(static_cast<std::size_t>(options_.coils), 0);
   thread_ = std::thread([this] { run(); });
@@ -98,15 +97,28 @@ bool ModbusServer::coil(int address) const {
          shared_coils_[static_cast<std::size_t>(address)] != 0;
 }
 
-void ModbusServer::serveClient(int fd, std::vector<int>& drop) {
-  std::uint8_t query[MODBUS_TCP_MAX_ADU_LENGTH];
-  modbus_set_socket(ctx_, fd);
-  const int rc = modbus_receive(ctx_, query);
-  if (rc == 0) return;  // not for us (libmodbus TCP answers every unit id anyway)
-  if (rc < 0) {         // closed, reset, stalled mid-frame or not Modbus: drop it
-    drop.push_back(fd);
-    return;
+bool ModbusServer::serveClient(Client& client) {
+  std::uint8_t chunk[512];
+  const ssize_t n = recv(client.fd, chunk, sizeof chunk, MSG_DONTWAIT);
+  if (n == 0) return false;  // closed
+  if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
+  client.buffer.insert(client.buffer.end(), chunk, chunk + n);
+  // Frames are cut here from the MBAP header, so a client that stalls mid-frame
+  // only waits for itself; libmodbus checks and answers each whole frame.
+  while (client.buffer.size() >= 7) {
+    const std::vector<std::uint8_t>& b = client.buffer;
+    const int protocol_id = (b[2] << 8) | b[3];
+    const int length = (b[4] << 8) | b[5];  // unit id + PDU
+    if (protocol_id != 0 || length < 2 || length > MODBUS_TCP_MAX_ADU_LENGTH - 6) return false;
+    const auto frame = static_cast<std::size_t>(6 + length);
+    if (b.size() < frame) break;
+    if (!reply(client.fd, b.data(), static_cast<int>(frame))) return false;
+    client.buffer.erase(client.buffer.begin(), client.buffer.begin() + static_cast<long>(frame));
   }
+  return true;
+}
+
+bool ModbusServer::reply(int fd, const std::uint8_t* query, int length) {
   {
     std::lock_guard lock(mutex_);
     if (registers_changed_) {
@@ -118,13 +130,11 @@ void ModbusServer::serveClient(int fd, std::vector<int>& drop) {
     }
   }
   // Sent without the lock: a slow reader cannot stall the controller's publisher.
-  const int sent = modbus_reply(ctx_, query, rc, mapping_);
+  modbus_set_socket(ctx_, fd);
+  const int sent = modbus_reply(ctx_, query, length, mapping_);
   ++requests_;
-  if (sent < 0) {
-    drop.push_back(fd);
-    return;
-  }
-  const std::uint8_t function = query[modbus_get_header_length(ctx_)];
+  if (sent < 0) return false;
+  const std::uint8_t function = query[7];
   if (function == MODBUS_FC_WRITE_SINGLE_COIL || function == MODBUS_FC_WRITE_MULTIPLE_COILS) {
     std::lock_guard lock(mutex_);
     std::copy_n(mapping_->tab_bits, shared_coils_.size(), shared_coils_.begin());
@@ -135,26 +145,29 @@ void ModbusServer::serveClient(int fd, std::vector<int>& drop) {
     std::lock_guard lock(mutex_);
     registers_changed_ = true;  // the controller's values win over a client's writes
   }
+  return true;
 }
 
 void ModbusServer::run() {
   std::vector<pollfd> fds;
-  std::vector<int> clients;
-  std::vector<int> drop;
+  std::vector<Client> clients;
   while (!stop_) {
     fds.clear();
     fds.push_back({listen_fd_, POLLIN, 0});
-    for (int c : clients) fds.push_back({c, POLLIN, 0});
+    for (const Client& c : clients) fds.push_back({c.fd, POLLIN, 0});
     const int ready = poll(fds.data(), fds.size(), kPollMs);
     if (ready <= 0) continue;  // timeout, or EINTR from a signal
-    drop.clear();
-    for (std::size_t i = 1; i < fds.size(); ++i) {
-      if (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) serveClient(fds[i].fd, drop);
+    std::vector<Client> kept;
+    for (std::size_t i = 0; i < clients.size(); ++i) {
+      const bool alive =
+          (fds[i + 1].revents & (POLLIN | POLLHUP | POLLERR)) == 0 || serveClient(clients[i]);
+      if (alive) {
+        kept.push_back(std::move(clients[i]));
+      } else {
+        close(clients[i].fd);
+      }
     }
-    for (int fd : drop) {
-      close(fd);
-      clients.erase(std::remove(clients.begin(), clients.end(), fd), clients.end());
-    }
+    clients = std::move(kept);
     if (fds[0].revents & POLLIN) {
       const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
       if (fd >= 0 && static_cast<int>(clients.size()) >= options_.max_clients) {
@@ -164,12 +177,12 @@ void ModbusServer::run() {
         setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
         const timeval send_limit{1, 0};  // a client that never reads is dropped, not waited for
         setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &send_limit, sizeof send_limit);
-        clients.push_back(fd);
+        clients.push_back({fd, {}});
       }
     }
     clients_ = static_cast<int>(clients.size());
   }
-  for (int fd : clients) close(fd);
+  for (const Client& c : clients) close(c.fd);
   clients_ = 0;
 }
 

@@ -1,8 +1,11 @@
 #pragma once
 // A Modbus TCP server over one register table and a few coils, for the simulated
 // controller (`mdhd modbus-sim`) and tests: a thread answers any number of clients
-// with libmodbus (poll loop + modbus_receive/modbus_reply). A client that
-// disconnects, stalls mid-frame or sends garbage loses its own connection only.
+// (poll loop; frames cut from the MBAP header without blocking, each answered by
+// libmodbus's modbus_reply). A client that disconnects, stalls mid-frame or sends
+// garbage (a protocol id other than 0, a length out of 2..254) loses its own
+// connection only and never delays the others. (modbus_receive is not used: it
+// blocks on a client that stalls mid-frame, holding up every other client.)
 //
 // The owner publishes register values with setRegisters() and reads coils with
 // coil(); both are thread-safe (a mutex guards the shared copy; the server thread
@@ -35,8 +38,7 @@ struct ModbusServerOptions {
   protocol::RegisterTable table = protocol::RegisterTable::kHolding;
   int registers = 0;  // registers 0..registers-1 exist; others answer illegal address
   int coils = 1;
-  int max_clients = 64;       // more are accepted and closed at once
-  int byte_timeout_ms = 100;  // a client stalling mid-frame is dropped after this
+  int max_clients = 64;  // more are accepted and closed at once
 };
 
 class ModbusServer {
@@ -61,8 +63,14 @@ class ModbusServer {
   void stop();
 
  private:
+  struct Client {
+    int fd = -1;
+    std::vector<std::uint8_t> buffer;  // bytes of a frame not yet complete
+  };
   void run();
-  void serveClient(int fd, std::vector<int>& drop);
+  // Reads what the client sent and answers each whole frame; false: drop it.
+  bool serveClient(Client& client);
+  bool reply(int fd, const std::uint8_t* query, int length);
 
   ModbusServerOptions options_;
   int listen_fd_ = -1;
