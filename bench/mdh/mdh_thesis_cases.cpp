@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <string>
 
 #include "bench/mdh/thesis_cases.h"
@@ -17,7 +18,8 @@ namespace {
 
 struct Run {
   Stats stats;
-  double ms = 0;
+  double ms = 0;     // wall clock
+  double cpuMs = 0;  // process CPU time (all threads): comparable on a loaded machine
   double volume = 0;
 };
 
@@ -30,12 +32,14 @@ Run run(const bench::ThesisCase& c, std::vector<Rule> rules, double density, int
   o.threads = threads;
   Stock stock(c.stock, o);
   const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
   for (const auto& s : c.steps) {
     stock.setToolRadius(s.radius);
     stock.cut(*s.solid, s.direction);
   }
   Run r;
   r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  r.cpuMs = 1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC;
   r.stats = stock.stats();
   r.volume = stock.volume();
   return r;
@@ -85,7 +89,7 @@ int main(int argc, char** argv) {
   std::printf("\nRuleset %s, brick 0, 1 thread (tables 6.5, 6.6)\n", rulesName(best).c_str());
   std::printf("%-5s %6s %6s %6s %6s %6s %6s %8s %9s %8s %8s %9s\n", "case", "splits", "direct",
               "indir", "sign", "fallbk", "forced", "leaves", "memory_kB", "%ptrgrid", "%embed",
-              "time_ms");
+              "cpu_ms");
   double shares[3] = {0, 0, 0};
   int counted = 0;
   for (const auto& c : cases) {
@@ -97,7 +101,7 @@ int main(int argc, char** argv) {
                 (long long)s.splitsIndirect, (long long)s.splitsSignConflict,
                 (long long)s.splitsFallback, (long long)s.forcedVertices, (long long)s.leaves,
                 s.memoryBytes / 1024.0, s.pointerGridPercent,
-                100.0 * embeddedBytes / double(s.memoryBytes), r.ms);
+                100.0 * embeddedBytes / double(s.memoryBytes), r.cpuMs);
     const double thesisTyped = double(s.splitsDirect + s.splitsIndirect + s.splitsSignConflict);
     if (thesisTyped > 0) {
       shares[0] += s.splitsIndirect / thesisTyped;
@@ -112,15 +116,17 @@ int main(int argc, char** argv) {
         "44.8 %% direct, 14.9 %% sign conflict): %.1f %% indirect, %.1f %% direct, "
         "%.1f %% sign conflict\n",
         100 * shares[0] / counted, 100 * shares[1] / counted, 100 * shares[2] / counted);
-  std::printf("\nRun time (ms) by layout, ruleset %s\n%-5s %10s %10s %10s  %s\n",
-              rulesName(best).c_str(), "case", "brick0", "brick32x1", "brick32x2",
-              "volumes equal 1 vs 2 threads");
+  std::printf(
+      "\nRun time by layout, ruleset %s: CPU ms (one thread) and wall ms\n"
+      "%-5s %10s %10s %10s %10s  %s\n",
+      rulesName(best).c_str(), "case", "cpu_b0", "cpu_b32", "wall_b32x1", "wall_b32x2",
+      "same result 1 vs 2 threads");
   for (const auto& c : cases) {
     const Run a = run(c, best, density, 0, 1);
     const Run b = run(c, best, density, 32, 1);
     const Run d = run(c, best, density, 32, 2);
-    std::printf("%-5s %10.1f %10.1f %10.1f  %s\n", c.name.c_str(), a.ms, b.ms, d.ms,
-                b.volume == d.volume && b.stats.splits() == d.stats.splits() ? "yes" : "NO");
+    std::printf("%-5s %10.1f %10.1f %10.1f %10.1f  %s\n", c.name.c_str(), a.cpuMs, b.cpuMs, b.ms,
+                d.ms, b.volume == d.volume && b.stats.splits() == d.stats.splits() ? "yes" : "NO");
   }
   return 0;
 }

@@ -18,6 +18,7 @@ namespace {
 
 constexpr int kMaxCubesPerAxis = 1 << 20;
 constexpr std::int64_t kMaxBricks = std::int64_t{1} << 22;
+constexpr double kMaxCellPoints = 257.0 * 257.0 * 257.0;
 constexpr char kAxisNames[] = "xyz";
 
 }  // namespace
@@ -44,6 +45,14 @@ Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(o
     bricks_[a] = (grid_.cubes[a] + brickSize_[a] - 1) / brickSize_[a];
     bricks *= bricks_[a];
   }
+  // An overhang unpacks a whole cell (about 25 bytes per vertex), so the
+  // largest cell is bounded.
+  double cellPoints = 1.0;
+  for (int a = 0; a < 3; ++a) cellPoints *= std::min(brickSize_[a], grid_.cubes[a]) + 1.0;
+  if (cellPoints > kMaxCellPoints)
+    throw std::invalid_argument("mdh: cells of " + std::to_string(cellPoints) +
+                                " grid points are too large to unpack; use a brick size of at "
+                                "most 256 (or a coarser density)");
   if (bricks > kMaxBricks)
     throw std::invalid_argument("mdh: too many bricks (" + std::to_string(bricks) +
                                 "); use a larger brick size");
@@ -111,7 +120,10 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
       }
     }
   };
-  const int helpers = std::min<int>(threads_, static_cast<int>(items.size())) - 1;
+  // Starting a thread costs tens of microseconds: small steps stay on this one.
+  constexpr std::int64_t kParallelPoints = 32768;
+  const int workers = t.pointCount() < kParallelPoints ? 1 : threads_;
+  const int helpers = std::min<int>(workers, static_cast<int>(items.size())) - 1;
   std::vector<std::thread> pool;
   for (int i = 0; i < helpers; ++i) pool.emplace_back(work);
   work();

@@ -42,6 +42,13 @@ TEST(StockCut, RejectsBadBoxesAndDensities) {
   EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
   o.density = 1e7;
   EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
+  o.density = 100;  // one root cell of 1001 x 801 x 601 points is too large to unpack
+  o.brick = 0;
+  EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
+  o.brick = -1;
+  EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
+  o.brick = 64;
+  EXPECT_NO_THROW(Stock(kStock, o));
 }
 
 TEST(StockCut, GridAlignedPocketRemovesExactlyItsColumns) {
