@@ -6,12 +6,12 @@
 #include <glm/geometric.hpp>
 
 #include "sim/check/contact_depth.h"
-#include "sim/check/move_time.h"
 #include "sim/check/overhang_area.h"
 #include "sim/geometry/pose_interpolation.h"
 #include "sim/geometry/swept_volume.h"
 #include "sim/kinematics/joint_path.h"
 #include "sim/kinematics/limits.h"
+#include "sim/kinematics/motion_time.h"
 
 namespace mdhd::check {
 namespace {
@@ -130,13 +130,15 @@ void Simulation::motion(const gcode::Motion& m) {
       stats_.path_length += glm::length(poses[i].pose.tip - poses[i - 1].pose.tip);
       runStep(m, path, parts, poses[i - 1], poses[i], removed);
     }
-    const double seconds = moveSeconds(m, moveLength(m, path), kin_.machine());
+    const double seconds = kin::motionSeconds(m, kin_, path.toolLength());
     stats_.cycle_time_s += seconds;
     if (removed && m.type != gcode::MotionType::kRapid && parts != nullptr) {
       toolUse(stats_, m.tool).cutting_time_s += seconds;
     }
   } catch (const kin::KinematicsError& e) {
     throw gcode::GcodeError(m.pos, std::string("cannot simulate this move: ") + e.what());
+  } catch (const kin::MotionTimeError& e) {
+    throw gcode::GcodeError(m.pos, std::string("cannot time this move: ") + e.what());
   } catch (const std::invalid_argument& e) {
     throw gcode::GcodeError(m.pos, std::string("cannot simulate this move: ") + e.what());
   }
@@ -144,7 +146,7 @@ void Simulation::motion(const gcode::Motion& m) {
 }
 
 void Simulation::event(const gcode::Event& e) {
-  if (e.type == gcode::EventType::kDwell && e.value > 0.0) stats_.cycle_time_s += e.value;
+  stats_.cycle_time_s += kin::eventSeconds(e);
 }
 
 void Simulation::checkLimits(const gcode::Motion& m, const kin::JointPath& path) {
