@@ -4,6 +4,7 @@
 // machine's joints, tool, spindle and line over Modbus TCP (docs/modbus.md).
 #include <csignal>
 #include <fstream>
+#include <iomanip>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -196,8 +197,8 @@ int simulate(const SimArgs& a, std::ostream& out, std::ostream& err) {
       const double before = vm.programSeconds();
       gcode::Interpreter interp(interpreterConfig(loaded), vm);
       interp.run(openProgram(loaded));
-      err << "modbus-sim: program finished (" << vm.programSeconds() - before
-          << " s of machine time)" << std::endl;
+      err << "modbus-sim: program finished (" << std::fixed << std::setprecision(3)
+          << vm.programSeconds() - before << " s of machine time)" << std::endl;
       // A program that takes no time would spin: loop only programs that move.
       if (!a.loop || vm.programSeconds() == before) break;
     }
