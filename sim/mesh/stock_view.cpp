@@ -131,6 +131,24 @@ int StockView::columnSolidCount(int leaf, int pu, int pv) const {
   return m.solidCount(m.height(pu - l.info.lo[m.uAxis()], pv - l.info.lo[m.vAxis()]));
 }
 
+double StockView::crossing(const GridPoint& p, int axis, int hint) const {
+  const int owner = ownerOf(p, hint);
+  const double x = crossingIn(owner, p, axis);
+  if (!std::isnan(x)) return x;
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  for (int d = 1; d < 4; ++d) {  // the cubes at -u, -v, -u-v beside the edge
+    GridPoint c = p;
+    c[u] -= d & 1;
+    c[v] -= d >> 1;
+    if (c[u] < 0 || c[v] < 0) continue;
+    const int other = ownerOf(c, hint);
+    if (other == owner) continue;
+    const double y = crossingIn(other, p, axis);
+    if (!std::isnan(y)) return y;
+  }
+  return x;
+}
+
 double StockView::crossingIn(int leaf, const GridPoint& p, int axis) const {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   const Leaf& l = leaves_[leaf];

@@ -54,10 +54,11 @@ class StockView {
   // Solidity of grid vertex p as its owner stores it.
   bool solid(const GridPoint& p, int hint = -1) const { return solidIn(ownerOf(p, hint), p); }
   // The surface crossing on the grid edge from p along `axis` as its owner
-  // stores it: an absolute grid coordinate, NaN if the owner has none there.
-  double crossing(const GridPoint& p, int axis, int hint = -1) const {
-    return crossingIn(ownerOf(p, hint), p, axis);
-  }
+  // stores it: an absolute grid coordinate. If the owner has none there
+  // (cells disagree about an end), the first of the other leaves around the
+  // edge (owners of the cubes beside it, in a fixed order) that has one; NaN
+  // if none has.
+  double crossing(const GridPoint& p, int axis, int hint = -1) const;
   // Number of solid vertices in the column of a partial leaf through (pu, pv)
   // (grid coordinates on the leaf's u and v axes).
   int columnSolidCount(int leaf, int pu, int pv) const;
