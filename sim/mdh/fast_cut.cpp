@@ -116,17 +116,17 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
     std::vector<double> heights;
     std::vector<std::uint8_t> changed;
     for (int family = 0; family < 2; ++family) {
-      std::vector<int> rows;
-      for (const ColumnChange& c : changes) rows.push_back(family == 0 ? c.iv : c.iu);
-      std::sort(rows.begin(), rows.end());
-      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-      for (int r : rows) {
+      std::vector<std::vector<int>> byRow(map.rowCount(family));
+      for (std::size_t i = 0; i < changes.size(); ++i)
+        byRow[family == 0 ? changes[i].iv : changes[i].iu].push_back(static_cast<int>(i));
+      for (int r = 0; r < map.rowCount(family); ++r) {
+        if (byRow[r].empty()) continue;
         const int n = map.edgesInRow(family) + 1;
         heights.resize(n);
         changed.assign(n, 0);
         for (int e = 0; e < n; ++e) heights[e] = map.rowHeight(family, r, e);
-        for (const ColumnChange& c : changes) {
-          if ((family == 0 ? c.iv : c.iu) != r) continue;
+        for (int i : byRow[r]) {
+          const ColumnChange& c = changes[i];
           const int e = family == 0 ? c.iu : c.iv;
           heights[e] = c.height;
           changed[e] = 1;

@@ -21,28 +21,12 @@ ThreeMap::ThreeMap(const GridBox& box, Direction dir, bool threeWay)
   }
 }
 
-int ThreeMap::solidCount(double h) const {
-  const int lo = box_.lo[dir_.axis];
-  const int hi = box_.hi[dir_.axis];
-  if (std::isinf(h)) return (dir_.sign > 0) == (h > 0) ? hi - lo + 1 : 0;
-  const int n = dir_.sign > 0 ? static_cast<int>(std::floor(h)) - lo + 1
-                              : hi - static_cast<int>(std::ceil(h)) + 1;
-  return std::clamp(n, 0, hi - lo + 1);
-}
-
 void ThreeMap::straddle(double h1, double h2, int& first, int& count) const {
   const int f1 = solidCount(h1);
   const int f2 = solidCount(h2);
   count = std::abs(f1 - f2);
   first = dir_.sign > 0 ? box_.lo[dir_.axis] + std::min(f1, f2)
                         : box_.hi[dir_.axis] - std::max(f1, f2) + 1;
-}
-
-double ThreeMap::columnLength(double h) const {
-  const double lo = box_.lo[dir_.axis];
-  const double hi = box_.hi[dir_.axis];
-  if (dir_.sign > 0) return h < lo ? 0.0 : std::min(h, hi) - lo;
-  return h > hi ? 0.0 : hi - std::max(h, lo);
 }
 
 double ThreeMap::interpolatedCrossing(double h0, double h1, int edgeStart, int level) const {

@@ -12,6 +12,8 @@
 // that grid edge, again as an absolute coordinate along the edge. How many an
 // edge holds follows from its two parent heights, so they are packed per row
 // of edges with no index or pointer per entry.
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -45,13 +47,23 @@ class ThreeMap {
   double emptyHeight() const { return dir_.sign > 0 ? -kInf : kInf; }
   double fullHeight() const { return dir_.sign > 0 ? box_.hi[dir_.axis] : box_.lo[dir_.axis]; }
 
-  // Number of solid vertices of a column with height h.
-  int solidCount(double h) const;
+  // Number of solid vertices of a column with height h (inline: the hottest call).
+  int solidCount(double h) const {
+    const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+    if (!(h > -kInf && h < kInf)) return (dir_.sign > 0) == (h > 0) ? hi - lo + 1 : 0;
+    const int n = dir_.sign > 0 ? static_cast<int>(std::floor(h)) - lo + 1
+                                : hi - static_cast<int>(std::ceil(h)) + 1;
+    return n < 0 ? 0 : (n > hi - lo + 1 ? hi - lo + 1 : n);
+  }
   bool solidAt(double h, int level) const { return dir_.sign > 0 ? level <= h : level >= h; }
   // The grid levels where columns h1 and h2 differ: first, first+1, ... (count).
   void straddle(double h1, double h2, int& first, int& count) const;
   // Solid length of a column in grid units.
-  double columnLength(double h) const;
+  double columnLength(double h) const {
+    const double lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+    if (dir_.sign > 0) return h < lo ? 0.0 : std::min(h, hi) - lo;
+    return h > hi ? 0.0 : hi - std::max(h, lo);
+  }
 
   // Embedded heights. family 0: edges along u, row index = iv; family 1: edges
   // along v, row index = iu. Entries: edge by edge, levels ascending.
