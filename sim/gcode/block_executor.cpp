@@ -25,6 +25,7 @@ void BlockExecutor::execute(const Block& block) {
   Step st{block, words_, working};
   nurbs_mark_ = nurbs_.size();
   nurbs_cleared_ = false;
+  staged_tool_.reset();
   try {
     executeSteps(st);
   } catch (...) {
@@ -32,6 +33,7 @@ void BlockExecutor::execute(const Block& block) {
     nurbs_.resize(nurbs_mark_);
     throw;
   }
+  if (staged_tool_) config_.tools.add(*staged_tool_);
   state_ = working;
 }
 

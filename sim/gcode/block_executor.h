@@ -2,6 +2,7 @@
 // Executes blocks in RS274/NGC order (LinuxCNC 2.9 semantics) and hands the
 // resulting motions and events to a MotionSink. Knows nothing of text: the
 // Interpreter feeds it the reader's blocks, tests may feed hand-made ones.
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -126,6 +127,7 @@ class BlockExecutor {
   std::size_t nurbs_mark_ = 0;
   bool nurbs_cleared_ = false;
   void clearNurbs();
+  std::optional<ToolEntry> staged_tool_;  // G10 L1/L10/L11 edit of this block
 };
 
 }  // namespace mdhd::gcode

@@ -41,6 +41,9 @@ void BlockExecutor::setTool(Step& st) {
       e.type = EventType::kSpindle;
       emitEvent(st, std::move(e));
     }
+    // The machine does not move: LinuxCNC re-reads its position after M6, so a
+    // G43 of the same block changes the program Z, not the machine Z (rs274's
+    // standalone canon differs, see the oracle test).
     s.tool = s.selected_tool;
     Event e;
     e.type = EventType::kToolChange;

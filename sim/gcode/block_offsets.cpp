@@ -113,7 +113,7 @@ void BlockExecutor::setToolG10(Step& st, int l) {
     }
   }
   if (w.has('R')) tool.diameter = 2.0 * st.lenWord('R');
-  config_.tools.add(tool);
+  staged_tool_ = tool;  // into the table when the whole block succeeds
 }
 
 void BlockExecutor::setG92(Step& st) {
