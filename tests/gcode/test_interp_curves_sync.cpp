@@ -181,6 +181,33 @@ TEST(Splines, NurbsOfHigherOrderEndsAtItsLastPoint) {
   EXPECT_EQ(r.state.current[kX], 20.0);
 }
 
+// A rejected block leaves the collected control points as they were.
+TEST(Splines, RejectedBlockKeepsTheNurbsPoints) {
+  RecordingSink sink;
+  BlockExecutor ex(InterpreterConfig{}, sink);
+  int line = 0;
+  auto block = [&line](std::vector<Word> words) {
+    Block b;
+    b.pos.line = ++line;
+    b.words = std::move(words);
+    return b;
+  };
+  ex.execute(block({{'F', 100, 1}}));
+  ex.execute(block({{'G', 5.2, 1}, {'X', 0, 2}, {'Y', 10, 3}, {'P', 1, 4}}));
+  EXPECT_THROW(ex.execute(block({{'X', 50, 1}, {'Y', 50, 2}})), GcodeError);  // no P
+  // A rejected block of another motion leaves the G5.2 collection going on.
+  EXPECT_THROW(ex.execute(block({{'G', 5.1, 1}, {'X', 1, 2}, {'Y', 1, 3}, {'I', 1, 4}})),
+               GcodeError);
+  ex.execute(block({{'X', 10, 1}, {'Y', 0, 2}, {'P', 1, 3}}));
+  ex.execute(block({{'G', 5.3, 1}}));
+  ASSERT_FALSE(sink.motions.empty());
+  // The curve of (0,0) (0,10) (10,0): B(1/2) = (2.5, 5), and nothing of (50,50).
+  EXPECT_NEAR(polylineDistance(sink.motions, 2.5, 5.0), 0.0, 0.001);
+  for (const RecordedMotion& m : sink.motions) EXPECT_LE(m.end[kX], 10.0);
+  EXPECT_EQ(sink.motions.back().end[kX], 10.0);
+  EXPECT_EQ(sink.motions.back().end[kY], 0.0);
+}
+
 TEST(SplineMath, ClampedCurveInterpolatesItsEnds) {
   const NurbsCurve c({{0, 0, 1}, {1, 2, 1}, {3, 2, 0.5}, {4, 0, 1}, {6, 1, 1}}, 3);
   EXPECT_DOUBLE_EQ(c.uMax(), 3.0);
