@@ -7,6 +7,11 @@
 #include "sim/gcode/spline_math.h"
 
 namespace mdhd::gcode {
+namespace {
+
+constexpr int kMaxNurbsOrder = 64;  // degree 63: far beyond any CAM output
+
+}  // namespace
 
 void BlockExecutor::spline(Step& st, int motion) {
   InterpState& s = st.s;
@@ -80,6 +85,8 @@ void BlockExecutor::nurbsPoint(Step& st) {
   if (w.has('L')) {
     const double l = w.get('L');
     if (l != std::floor(l)) st.failWord('L', "NURBS order L must be an integer");
+    if (l > kMaxNurbsOrder)
+      st.failWord('L', "NURBS order L above " + std::to_string(kMaxNurbsOrder));
     if (l > 3) s.nurbs_order = static_cast<int>(l);
   }
   if (xy) {

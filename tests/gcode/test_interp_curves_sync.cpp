@@ -141,6 +141,7 @@ TEST(Splines, ErrorsInLinuxCncWords) {
   EXPECT_EQ(errorOf("F100\nG5.2 X1 Y1 P1\nX2 Y2\n"),
             "Must specify positive weight P for every Control Point");
   EXPECT_EQ(errorOf("G5.2 X1 Y1 P1\n"), "Cannot make a NURBS with 0 feedrate");
+  EXPECT_EQ(errorOf("F100\nG5.2 X1 Y1 P1 L[10**300]\n"), "NURBS order L above 64");
   EXPECT_EQ(errorOf("T0\nG41.1 D2\nF100\nG5.1 X1 Y1 I1 J1\n"),
             "Cannot convert spline with cutter radius compensation");
 }
