@@ -129,16 +129,23 @@ bool ModbusServer::reply(int fd, const std::uint8_t* query, int length) {
       registers_changed_ = false;
     }
   }
-  // Sent without the lock: a slow reader cannot stall the controller's publisher.
-  modbus_set_socket(ctx_, fd);
-  const int sent = modbus_reply(ctx_, query, length, mapping_);
-  ++requests_;
-  if (sent < 0) return false;
   const std::uint8_t function = query[7];
-  if (function == MODBUS_FC_WRITE_SINGLE_COIL || function == MODBUS_FC_WRITE_MULTIPLE_COILS) {
+  const bool writes_coils =
+      function == MODBUS_FC_WRITE_SINGLE_COIL || function == MODBUS_FC_WRITE_MULTIPLE_COILS;
+  int sent = 0;
+  ++requests_;  // before the reply, so a client that has its answer sees it counted
+  modbus_set_socket(ctx_, fd);
+  if (writes_coils) {
+    // Rare (a feed hold): the owner must see the coil once the client has its reply,
+    // so the write, the reply and the copy happen under the lock.
     std::lock_guard lock(mutex_);
+    sent = modbus_reply(ctx_, query, length, mapping_);
     std::copy_n(mapping_->tab_bits, shared_coils_.size(), shared_coils_.begin());
+  } else {
+    // Sent without the lock: a slow reader cannot stall the controller's publisher.
+    sent = modbus_reply(ctx_, query, length, mapping_);
   }
+  if (sent < 0) return false;
   if (function == MODBUS_FC_WRITE_SINGLE_REGISTER ||
       function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ||
       function == MODBUS_FC_WRITE_AND_READ_REGISTERS || function == MODBUS_FC_MASK_WRITE_REGISTER) {

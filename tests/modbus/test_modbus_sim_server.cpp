@@ -118,7 +118,7 @@ TEST(ModbusSimServer, ServesTheMapAndSurvivesBadClients) {
   EXPECT_EQ(second.read().line, 43);
   close(garbage);
   close(hanging);
-  EXPECT_GE(server->requests(), 22u);
+  EXPECT_EQ(server->requests(), 22u);  // garbage and broken frames are not answered
 }
 
 TEST(ModbusSimServer, AMapBeyondTheRegistersGetsIllegalAddress) {
