@@ -43,10 +43,11 @@ bool cutColumn(const ThreeMap& m, double h, std::span<const Span> tool, std::vec
 }
 
 // Rebuilds one row of embedded heights; `heights` are the row's new parent
-// heights, `changed` marks the columns that moved.
+// heights, `changed` marks the columns that moved. Edges in [e0, e1) lie in
+// the tool's box: their crossings can move even when neither column changes.
 void rebuildRow(ThreeMap& m, int family, int r, const std::vector<double>& heights,
-                const std::vector<std::uint8_t>& changed, const IntervalCache& cache,
-                std::vector<Span>& pieces) {
+                const std::vector<std::uint8_t>& changed, int e0, int e1,
+                const IntervalCache& cache, std::vector<Span>& pieces) {
   const int a = m.axis();
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
@@ -63,11 +64,12 @@ void rebuildRow(ThreeMap& m, int family, int r, const std::vector<double>& heigh
     m.straddle(oh0, oh1, ofirst, ocount);
     m.straddle(nh0, nh1, nfirst, ncount);
     const bool touched = changed[e] || changed[e + 1];
+    const bool reached = touched || (e >= e0 && e < e1);
     for (int i = 0; i < ncount; ++i) {
       const int k = nfirst + i;
       const bool hadOne = k >= ofirst && k < ofirst + ocount;
       double value = hadOne ? src[pos + (k - ofirst)] : std::nan("");
-      if (touched) {
+      if (reached) {
         p[a] = k;
         const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
         value = edgeCrossingAfterCut(m.solidAt(oh0, k), m.solidAt(oh1, k), value, m.solidAt(nh0, k),
@@ -79,6 +81,40 @@ void rebuildRow(ThreeMap& m, int family, int r, const std::vector<double>& heigh
   }
   dst.shrink_to_fit();
   m.row(family, r) = std::move(dst);
+}
+
+// A row without changed columns keeps its layout: only the crossings on
+// edges [e0, e1) the tool's lines reach move, in place. True if one moved.
+bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCache& cache,
+                      std::vector<Span>& pieces) {
+  const int a = m.axis();
+  const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
+  const GridBox& box = m.box();
+  std::vector<double>& row = m.row(family, r);
+  std::array<int, 3> p{};
+  p[y] = box.lo[y] + r;
+  bool moved = false;
+  std::size_t pos = 0;
+  for (int e = 0; e < e1; ++e) {
+    const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
+    int first = 0, count = 0;
+    m.straddle(h0, h1, first, count);
+    for (int i = 0; e >= e0 && i < count; ++i) {
+      const int k = first + i;
+      p[a] = k;
+      const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
+      if (tool.empty()) continue;
+      const bool s0 = m.solidAt(h0, k), s1 = m.solidAt(h1, k);
+      double& c = row[pos + i];
+      const double value = edgeCrossingAfterCut(s0, s1, c, s0, s1, box.lo[x] + e, tool, pieces);
+      if (!(value == c)) {
+        c = value;
+        moved = true;
+      }
+    }
+    pos += count;
+  }
+  return moved;
 }
 
 }  // namespace
@@ -101,26 +137,32 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
       if (!cutColumn(map, h, tool, before, after, nh)) return FastCut::kOverhang;
       if (!(nh == h)) changes.push_back({iu, iv, nh});
     }
-  if (changes.empty()) return FastCut::kUnchanged;
-  int u0 = map.columnsU(), u1 = -1, v0 = map.columnsV(), v1 = -1;
-  for (const ColumnChange& c : changes) {
-    u0 = std::min(u0, c.iu), u1 = std::max(u1, c.iu);
-    v0 = std::min(v0, c.iv), v1 = std::max(v1, c.iv);
-  }
-  // The squares around the changed columns are all the volume that moves.
-  u0 = std::max(0, u0 - 1), v0 = std::max(0, v0 - 1);
-  u1 = std::min(map.columnsU() - 1, u1 + 1), v1 = std::min(map.columnsV() - 1, v1 + 1);
+  if (changes.empty() && !map.threeWay()) return FastCut::kUnchanged;
+  // The squares around the tool's columns are all the volume that moves: the
+  // changed columns' and those of embedded crossings the tool moves alone.
+  const int u0 = std::max(0, region.lo[u] - box.lo[u] - 1);
+  const int v0 = std::max(0, region.lo[v] - box.lo[v] - 1);
+  const int u1 = std::min(map.columnsU() - 1, region.hi[u] - box.lo[u] + 1);
+  const int v1 = std::min(map.columnsV() - 1, region.hi[v] - box.lo[v] + 1);
   const double volumeBefore = map.squaresVolume(u0, u1, v0, v1);
+  bool moved = !changes.empty();
   if (map.threeWay()) {
     std::vector<Span> pieces;
     std::vector<double> heights;
     std::vector<std::uint8_t> changed;
     for (int family = 0; family < 2; ++family) {
+      const int x = family == 0 ? u : v, y = family == 0 ? v : u;
+      const int e0 = region.lo[x] - box.lo[x], e1 = region.hi[x] - box.lo[x];
       std::vector<std::vector<int>> byRow(map.rowCount(family));
       for (std::size_t i = 0; i < changes.size(); ++i)
         byRow[family == 0 ? changes[i].iv : changes[i].iu].push_back(static_cast<int>(i));
       for (int r = 0; r < map.rowCount(family); ++r) {
-        if (byRow[r].empty()) continue;
+        if (byRow[r].empty()) {
+          const int ry = box.lo[y] + r;
+          if (ry >= region.lo[y] && ry <= region.hi[y])
+            moved |= moveRowCrossings(map, family, r, e0, e1, cache, pieces);
+          continue;
+        }
         const int n = map.edgesInRow(family) + 1;
         heights.resize(n);
         changed.assign(n, 0);
@@ -131,10 +173,11 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
           heights[e] = c.height;
           changed[e] = 1;
         }
-        rebuildRow(map, family, r, heights, changed, cache, pieces);
+        rebuildRow(map, family, r, heights, changed, e0, e1, cache, pieces);
       }
     }
   }
+  if (!moved) return FastCut::kUnchanged;
   for (const ColumnChange& c : changes) map.setHeight(c.iu, c.iv, c.height);
   volumeDelta = map.squaresVolume(u0, u1, v0, v1) - volumeBefore;
   return FastCut::kDone;
