@@ -1,8 +1,9 @@
 #pragma once
 // The common case of a cut: the cell's own direction still holds the result.
 // Only the columns the tool reaches are recomputed (interval arithmetic on
-// their one solid segment), and only the rows of embedded heights through the
-// changed columns are rebuilt.
+// their one solid segment); rows of embedded heights through changed columns
+// are rebuilt, and in the other rows the tool's box reaches the crossings move
+// in place (a cut can move a crossing without changing any column).
 #include "sim/mdh/grid.h"
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/three_map.h"
