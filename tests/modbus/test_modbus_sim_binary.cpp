@@ -118,7 +118,7 @@ TEST(ModbusSimBinary, MapFileFeedHoldAndExitAfter) {
       "feed_hold": {"coil": 3}})";
   }
   SimProcess sim({kBin, "modbus-sim", kContour, "--port", "0", "--speed", "20", "--map", map_path,
-                  "--exit-after", "3"});
+                  "--exit-after", "1.5"});
   const int port = listeningPort(sim);
   ASSERT_GT(port, 0);
   std::ifstream in(map_path);
@@ -135,12 +135,53 @@ TEST(ModbusSimBinary, MapFileFeedHoldAndExitAfter) {
   std::this_thread::sleep_for(100ms);
   EXPECT_EQ(client.read().joints[gcode::kX], x);
   client.writeFeedHold(false);
-  // --exit-after 3: it leaves by itself, cleanly.
+  // --exit-after 1.5: it leaves by itself, cleanly.
   EXPECT_EQ(sim.stop(0, 6s), 0);
   const std::string errors = sim.errors();
   EXPECT_THAT(errors, HasSubstr("feed hold on at line 8"));
   EXPECT_THAT(errors, HasSubstr("feed hold off at line 8"));
   EXPECT_THROW(client.read(), protocol::ModbusError);  // the server is gone
+}
+
+TEST(ModbusSimBinary, JobsOwnModbusBlockAndLoop) {
+  // A job carrying its own `modbus` block: joints as float32 cdab from address 50.
+  const std::string examples = std::string(MDHD_SHARED_DIR) + "/examples/";
+  nlohmann::json job = nlohmann::json::parse(std::ifstream(kContour));
+  job["machine_file"] = examples + "machine-3axis.json";
+  job["program_file"] = examples + "contour-3axis.ngc";
+  job["modbus"] = nlohmann::json::parse(R"({"host": "127.0.0.1",
+      "joints": {"X": {"address": 50, "type": "float32", "word_order": "cdab"},
+                 "Y": {"address": 52, "type": "float32", "word_order": "cdab"},
+                 "Z": {"address": 54, "type": "float32", "word_order": "cdab"}},
+      "line": {"address": 56, "type": "uint32", "word_order": "cdab"}})");
+  const std::string job_path = ::testing::TempDir() + "modbus_sim_job.json";
+  std::ofstream(job_path) << job.dump();
+
+  SimProcess sim({kBin, "modbus-sim", job_path, "--port", "0", "--speed", "40", "--loop",
+                  "--exit-after", "10"});
+  const int port = listeningPort(sim);
+  ASSERT_GT(port, 0);
+  protocol::ModbusMap map = protocol::modbusMapFromJson(job["modbus"]);
+  map.port = port;
+  protocol::ModbusTcpClient client(map);
+  // --loop: after the last line the program starts again from home.
+  std::int64_t highest = 0;
+  bool restarted = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!restarted && std::chrono::steady_clock::now() - t0 < 8s) {
+    const protocol::ModbusSample s = client.read();
+    if (*s.line == 8) {  // G1 X70 at Y25, Z48
+      EXPECT_EQ(s.joints[gcode::kY], 25);
+      EXPECT_EQ(s.joints[gcode::kZ], 48);
+    }
+    restarted = highest >= 15 && *s.line < 8;  // line 15 is the last arc (15 ms at 40x)
+    highest = std::max(highest, *s.line);
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_TRUE(restarted);
+  EXPECT_EQ(sim.stop(SIGINT, 3s), 0);
+  const std::string errors = sim.errors();
+  EXPECT_THAT(errors, HasSubstr("program finished (13.764 s of machine time)"));
 }
 
 struct Refusal {
