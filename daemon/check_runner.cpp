@@ -122,6 +122,11 @@ check::Report runCheckJob(const LoadedJob& loaded, const CheckControls& controls
     return errorReport(std::move(error));
   } catch (const protocol::FieldError& e) {
     return errorReport({e.message(), e.field(), "", 0, 0, ""});
+  } catch (const check::Cancelled&) {
+    throw;
+  } catch (const std::exception& e) {
+    // A failure of the engine itself: still a report, never a crash.
+    return errorReport({std::string("internal error: ") + e.what(), "(engine)", "", 0, 0, ""});
   }
   check::Report report = sim->finish(static_cast<std::int64_t>(interp.blocksExecuted()));
   if (controls.finished) controls.finished(sim->stock());

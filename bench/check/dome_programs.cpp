@@ -78,13 +78,21 @@ DomeProgram tiltedDomeProgram(const kin::Kinematics& kin, double tool_length, in
   p.text += fmt("G0 X%.4f Y%.4f Z%.4f\n", t0.x, t0.y, kSafe);
   p.text += fmt("G1 Z%.4f F1000\n", t0.z, 0, 0);
   p.moves = 3;
+  glm::dvec3 last = t0;
+  double lastC = cAt(-50);
   zigzag(lines, pts, -50, 50, -50, 50, [&](double x, double y) {
-    const double c = cAt(x);
-    const glm::dvec3 t = tip(x, y, c);
-    p.text += fmt("G1 X%.4f Y%.4f Z%.4f", t.x, t.y, t.z) + fmt(" C%.4f\n", c, 0, 0);
+    lastC = cAt(x);
+    last = tip(x, y, lastC);
+    p.text += fmt("G1 X%.4f Y%.4f Z%.4f", last.x, last.y, last.z) + fmt(" C%.4f\n", lastC, 0, 0);
     ++p.moves;
   });
-  p.text += fmt("G0 Z%.4f\n", kSafe + 20, 0, 0);
+  // Out along the tilted tool axis: straight up in W would drag the flutes sideways
+  // through the material beside the tool.
+  kin::JointValues q{};
+  q[gcode::kA] = kTilt;
+  q[gcode::kC] = lastC;
+  const glm::dvec3 out = last + 40.0 * kin.toolPose(q, tool_length).axis;
+  p.text += fmt("G0 X%.4f Y%.4f Z%.4f\n", out.x, out.y, out.z);
   ++p.moves;
   p.text += "G49\nM2\n";
   return p;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "daemon/check_runner.h"
 #include "daemon/cli.h"
 #include "protocol/json_schema.h"
 
@@ -173,6 +174,22 @@ TEST_F(CheckScratch, NoMeshIsWrittenForABrokenProgram) {
   const std::string stl = (dir_ / "m.stl").string();
   EXPECT_EQ(run({writeJob("G1 X5 F100 Q\n"), "--report", report(), "--mesh", stl}), 2);
   EXPECT_FALSE(fs::exists(stl));
+}
+
+TEST_F(CheckScratch, CancelStopsARunAtTheNextStep) {
+  const LoadedJob loaded = loadCheckedJobFile(writeJob(kPocket));
+  std::atomic<bool> cancel{false};
+  int calls = 0;
+  CheckControls controls;
+  controls.cancel = &cancel;
+  controls.progress = [&](double, std::int64_t) {
+    ++calls;
+    cancel = true;  // as the service's worker would, from another thread
+  };
+  EXPECT_THROW(runCheckJob(loaded, controls), check::Cancelled);
+  EXPECT_EQ(calls, 1);
+  cancel = false;
+  EXPECT_EQ(runCheckJob(loaded, {}).status, check::Status::kClean);
 }
 
 }  // namespace
