@@ -109,7 +109,8 @@ check::Report runCheckJob(const LoadedJob& loaded, const CheckControls& controls
   if (controls.cancel != nullptr) sim->setCancelFlag(controls.cancel);
   if (controls.progress) {
     const double lines = static_cast<double>(countLines(loaded));
-    sim->setProgress([&](const gcode::SourcePos& pos, std::int64_t moves) {
+    // `lines` by value: it lives in this block, the callback as long as the run.
+    sim->setProgress([&controls, lines](const gcode::SourcePos& pos, std::int64_t moves) {
       if (pos.file.empty()) controls.progress(std::min(1.0, pos.line / lines), moves);
     });
   }
