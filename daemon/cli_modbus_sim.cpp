@@ -105,35 +105,6 @@ std::string readText(const std::string& path, const std::string& field) {
 // The job, and its own `modbus` block if it has one. The job codec does not know
 // that block yet, so it is taken out before the job is read; such a job is then
 // loaded here the way loadJobFile does (machine_file, program_file beside it).
-LoadedJob loadSimJob(const std::string& path, std::optional<nlohmann::json>& modbus) {
-  nlohmann::json doc = protocol::parseJsonText(readText(path, "(file)"));
-  if (!doc.is_object() || !doc.contains("modbus")) return loadJobFile(path);
-  modbus = doc["modbus"];
-  doc.erase("modbus");
-  const std::filesystem::path file(path);
-  LoadedJob loaded;
-  loaded.base_dir = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-  loaded.job = protocol::jobFromJson(doc);
-  auto resolve = [&](const std::string& name) {
-    const std::filesystem::path p(name);
-    return p.is_absolute() ? p : loaded.base_dir / p;
-  };
-  if (!loaded.job.machine_name.empty()) {
-    throw FieldError("machine", "a machine by name needs the service's registry");
-  }
-  if (!loaded.job.machine_file.empty()) {
-    const std::string machine_path = resolve(loaded.job.machine_file).string();
-    try {
-      loaded.job.machine = protocol::machineFromJson(
-          protocol::parseJsonText(readText(machine_path, "machine_file")), "machine_file");
-    } catch (const FieldError& e) {
-      throw FieldError("machine_file", machine_path + ": " + e.what());
-    }
-  }
-  if (!loaded.job.program_file.empty()) loaded.program_path = resolve(loaded.job.program_file);
-  return loaded;
-}
-
 protocol::ModbusMap chooseMap(const SimArgs& a, const std::optional<nlohmann::json>& job_block,
                               const kin::Machine& machine) {
   if (!a.map.empty()) {
@@ -157,10 +128,9 @@ void installSignals() {
 }
 
 int simulate(const SimArgs& a, std::ostream& out, std::ostream& err) {
-  std::optional<nlohmann::json> job_block;
-  const LoadedJob loaded = loadSimJob(a.job, job_block);
+  const LoadedJob loaded = loadJobFile(a.job);
   const kin::Kinematics kin(*loaded.job.machine);
-  const protocol::ModbusMap map = chooseMap(a, job_block, *loaded.job.machine);
+  const protocol::ModbusMap map = chooseMap(a, loaded.job.modbus, *loaded.job.machine);
 
   daemon::ModbusServerOptions options;
   options.host = a.host;

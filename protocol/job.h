@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
 
 #include "sim/geometry/line_solid.h"
 #include "sim/geometry/tool.h"
@@ -55,6 +56,9 @@ struct Job {
   std::optional<std::string> program;
   std::string program_file;
   JobOptions options;
+  // The optional `modbus` block of service.md, kept as written: it is decoded by
+  // protocol/modbus_map_json against the machine, which may come from a file.
+  std::optional<nlohmann::json> modbus;
 
   const geom::Tool* findTool(int number) const;
 };

@@ -128,7 +128,7 @@ const geom::Tool* Job::findTool(int number) const {
 Job jobFromJson(const json& j, ProgramRequirement program) {
   requireObject(j, "",
                 {"machine", "machine_file", "tools", "stock", "fixtures", "work_offsets", "program",
-                 "program_file", "options"});
+                 "program_file", "options", "modbus"});
   Job job;
   const json* machine = optional(j, "machine");
   const json* machine_file = optional(j, "machine_file");
@@ -170,6 +170,10 @@ Job jobFromJson(const json& j, ProgramRequirement program) {
     throw FieldError("program", "missing (give program or program_file)");
   }
   if (const json* o = optional(j, "options")) job.options = options(*o, "options");
+  if (const json* m = optional(j, "modbus")) {
+    if (!m->is_object()) fail("modbus", "an object (the register map of service.md)", *m);
+    job.modbus = *m;
+  }
   return job;
 }
 

@@ -126,6 +126,17 @@ TEST(JobJson, MachineByNameIsKept) {
   EXPECT_EQ(jobFromJson(j).machine_name, "3-axis vertical mill");
 }
 
+TEST(JobJson, ModbusBlockIsKeptForTheModbusCodec) {
+  json j = minimalJob();
+  j["modbus"] = {{"host", "127.0.0.1"}, {"joints", {{"X", {{"address", 0}}}}}};
+  const Job job = jobFromJson(j);
+  ASSERT_TRUE(job.modbus.has_value());
+  EXPECT_EQ((*job.modbus)["host"], "127.0.0.1");
+  j["modbus"] = 5;
+  EXPECT_EQ(fieldOfError(j), "modbus");
+  EXPECT_FALSE(jobFromJson(minimalJob()).modbus.has_value());
+}
+
 TEST(JobJson, SyntaxErrorsGiveLineAndColumn) {
   try {
     parseJsonText("{\n  \"tools\": [1, 2,,]\n}");
