@@ -69,39 +69,11 @@ bool validDirection(const GoodBadMap (&maps)[3], const glm::dvec3& t, Direction&
   return found;
 }
 
-// An unsplittable (one cube) cell that no direction holds: drop the fewest
-// solid vertices that make one direction hold it. A loss below one grid cube.
-void forceFunctional(SampleGrid& g, const glm::dvec3& t, const CutContext& ctx) {
-  int bestCount = -1;
-  Direction best;
-  for (int index = 0; index < 6; ++index) {
-    const Direction d = directionFromIndex(index);
-    const int a = d.axis, n = g.size(a);
-    int drop = 0;
-    const GridBox& b = g.box();
-    for (int cv = b.lo[axisV(a)]; cv <= b.hi[axisV(a)]; ++cv)
-      for (int cu = b.lo[axisU(a)]; cu <= b.hi[axisU(a)]; ++cu) {
-        std::array<int, 3> p{};
-        p[a] = b.lo[a];
-        p[axisU(a)] = cu;
-        p[axisV(a)] = cv;
-        const std::size_t i0 = g.index(p);
-        bool gap = false;
-        for (int k = 0; k < n; ++k) {
-          const std::size_t i = i0 + (d.sign > 0 ? k : n - 1 - k) * g.stride(a);
-          if (!g.solidAt(i))
-            gap = true;
-          else if (gap)
-            ++drop;
-        }
-      }
-    const bool closer = std::abs(t[a]) > std::abs(t[best.axis]);
-    if (bestCount < 0 || drop < bestCount || (drop == bestCount && closer)) {
-      bestCount = drop;
-      best = d;
-    }
-  }
-  const int a = best.axis, n = g.size(a);
+// Calls f(i) for every solid vertex that lies beyond a gap when each line of
+// direction d is walked from its base face: the vertices a heightmap in d cannot hold.
+template <class F>
+void forEachVertexBeyondGap(const SampleGrid& g, Direction d, F&& f) {
+  const int a = d.axis, n = g.size(a);
   const GridBox& b = g.box();
   for (int cv = b.lo[axisV(a)]; cv <= b.hi[axisV(a)]; ++cv)
     for (int cu = b.lo[axisU(a)]; cu <= b.hi[axisU(a)]; ++cu) {
@@ -112,13 +84,33 @@ void forceFunctional(SampleGrid& g, const glm::dvec3& t, const CutContext& ctx) 
       const std::size_t i0 = g.index(p);
       bool gap = false;
       for (int k = 0; k < n; ++k) {
-        const std::size_t i = i0 + (best.sign > 0 ? k : n - 1 - k) * g.stride(a);
+        const std::size_t i = i0 + (d.sign > 0 ? k : n - 1 - k) * g.stride(a);
         if (!g.solidAt(i))
           gap = true;
         else if (gap)
-          g.state(i) &= static_cast<std::uint8_t>(~SampleGrid::kSolid);
+          f(i);
       }
     }
+}
+
+// An unsplittable (one cube) cell that no direction holds: drop the fewest
+// solid vertices that make one direction hold it. A loss below one grid cube.
+void forceFunctional(SampleGrid& g, const glm::dvec3& t, const CutContext& ctx) {
+  int bestCount = -1;
+  Direction best;
+  for (int index = 0; index < 6; ++index) {
+    const Direction d = directionFromIndex(index);
+    int drop = 0;
+    forEachVertexBeyondGap(g, d, [&](std::size_t) { ++drop; });
+    const bool closer = std::abs(t[d.axis]) > std::abs(t[best.axis]);
+    if (bestCount < 0 || drop < bestCount || (drop == bestCount && closer)) {
+      bestCount = drop;
+      best = d;
+    }
+  }
+  forEachVertexBeyondGap(g, best, [&](std::size_t i) {
+    g.state(i) &= static_cast<std::uint8_t>(~SampleGrid::kSolid);
+  });
   ctx.counters.forcedCells += 1;
   ctx.counters.forcedVertices += bestCount;
 }
