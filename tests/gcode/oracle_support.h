@@ -48,6 +48,33 @@ class RecordingSink : public MotionSink {
   std::vector<Event> events;
 };
 
+// A program run to its end or its first error, with what the tests look at. The
+// interpreter stays alive so its parameters can be read afterwards.
+struct ProgramRun {
+  std::vector<RecordedMotion> motions;
+  std::vector<Event> events;
+  std::optional<GcodeError> error;
+  InterpState state;
+  std::shared_ptr<RecordingSink> sink;
+  std::shared_ptr<Interpreter> interp;
+  double param(int number) const { return interp->parameters().get(number); }
+};
+
+inline ProgramRun runProgram(const std::string& program, InterpreterConfig config) {
+  ProgramRun r;
+  r.sink = std::make_shared<RecordingSink>();
+  r.interp = std::make_shared<Interpreter>(std::move(config), *r.sink);
+  try {
+    r.interp->run(makeStringSource(program));
+  } catch (const GcodeError& e) {
+    r.error = e;
+  }
+  r.motions = r.sink->motions;
+  r.events = r.sink->events;
+  r.state = r.interp->state();
+  return r;
+}
+
 struct OracleRun {
   std::vector<RecordedMotion> motions;
   std::optional<GcodeError> error;

@@ -10,27 +10,10 @@
 namespace mdhd::gcode::testing {
 namespace {
 
-struct Result {
-  std::vector<RecordedMotion> motions;
-  std::optional<GcodeError> error;
-  InterpState state;
-  std::array<double, 11> probe_params{};  // #5061..#5070 (index 0..9), #5063 etc.
-};
+using Result = ProgramRun;
 
 Result run(const std::string& program, InterpreterConfig config = {}) {
-  RecordingSink sink;
-  Interpreter interp(std::move(config), sink);
-  Result r;
-  try {
-    interp.run(makeStringSource(program));
-  } catch (const GcodeError& e) {
-    r.error = e;
-  }
-  r.motions = sink.motions;
-  r.state = interp.state();
-  for (int i = 0; i < 10; ++i)
-    r.probe_params[static_cast<std::size_t>(i)] = interp.parameters().get(5061 + i);
-  return r;
+  return runProgram(program, std::move(config));
 }
 
 std::string errorOf(const std::string& program) {
@@ -266,13 +249,13 @@ TEST(Probe, ModelDecidesWhereTheMoveEnds) {
   ASSERT_EQ(r.motions.size(), 3u);
   EXPECT_DOUBLE_EQ(r.motions[1].end[kZ], 0.0);
   EXPECT_DOUBLE_EQ(r.motions[2].end[kZ], 1.0);
-  EXPECT_DOUBLE_EQ(r.probe_params[2], 0.0);  // #5063
-  EXPECT_DOUBLE_EQ(r.probe_params[9], 1.0);  // #5070: tripped
+  EXPECT_DOUBLE_EQ(r.param(5063), 0.0);  // #5063
+  EXPECT_DOUBLE_EQ(r.param(5070), 1.0);  // #5070: tripped
   // Without a model the move runs to the target and #5070 says it did not trip.
   const Result none = run("G0 Z10\nG38.3 Z-10 F100\n");
   EXPECT_DOUBLE_EQ(none.motions[1].end[kZ], -10.0);
-  EXPECT_DOUBLE_EQ(none.probe_params[2], -10.0);
-  EXPECT_DOUBLE_EQ(none.probe_params[9], 0.0);
+  EXPECT_DOUBLE_EQ(none.param(5063), -10.0);
+  EXPECT_DOUBLE_EQ(none.param(5070), 0.0);
 }
 
 // ---------------------------------------------------------------- words, modes

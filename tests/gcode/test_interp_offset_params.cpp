@@ -14,26 +14,10 @@ InterpreterConfig tools() {
   return c;
 }
 
-struct Result {
-  std::vector<RecordedMotion> motions;
-  std::optional<GcodeError> error;
-  InterpState state;
-  std::function<double(int)> param;
-};
+using Result = ProgramRun;
 
 Result run(const std::string& program, InterpreterConfig config = tools()) {
-  RecordingSink sink;
-  auto interp = std::make_shared<Interpreter>(std::move(config), sink);
-  Result r;
-  try {
-    interp->run(makeStringSource(program));
-  } catch (const GcodeError& e) {
-    r.error = e;
-  }
-  r.motions = sink.motions;
-  r.state = interp->state();
-  r.param = [interp](int n) { return interp->parameters().get(n); };
-  return r;
+  return runProgram(program, std::move(config));
 }
 
 TEST(OffsetParameters, SelectingASystemReadsItsParameters) {

@@ -15,26 +15,10 @@ InterpreterConfig baseConfig() {
   return c;
 }
 
-struct Result {
-  std::vector<RecordedMotion> motions;
-  std::vector<Event> events;
-  std::optional<GcodeError> error;
-  InterpState state;
-};
+using Result = ProgramRun;
 
 Result run(const std::string& program, InterpreterConfig config = baseConfig()) {
-  RecordingSink sink;
-  Interpreter interp(std::move(config), sink);
-  Result r;
-  try {
-    interp.run(makeStringSource(program));
-  } catch (const GcodeError& e) {
-    r.error = e;
-  }
-  r.motions = sink.motions;
-  r.events = sink.events;
-  r.state = interp.state();
-  return r;
+  return runProgram(program, std::move(config));
 }
 
 void expectEnd(const RecordedMotion& m, double x, double y, double z) {
