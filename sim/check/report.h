@@ -47,6 +47,9 @@ struct Collision {
   ToolPartName part = ToolPartName::kNone;  // fixture_contact: which part; shank/holder: itself
   int fixture = -1;                         // fixture_contact: index into the job's fixtures
   std::string axis;                         // axis_limit: the joint's name
+  // Where on the first motion's path (0..1) the episode began: the share of that
+  // motion done before contact (a look-ahead's time to contact). Not in the JSON.
+  double path_s = 0.0;
 };
 
 struct MoveCounts {

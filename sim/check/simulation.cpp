@@ -73,7 +73,8 @@ Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>
                        std::vector<std::unique_ptr<geom::LineSolid>> fixtures,
                        SimulationOptions options)
     : kin_(kin),
-      fixtures_(std::move(fixtures)),
+      fixtures_(std::make_shared<const std::vector<std::unique_ptr<geom::LineSolid>>>(
+          std::move(fixtures))),
       options_(std::move(options)),
       started_(Clock::now()) {
   for (const geom::Tool& t : tools) {
@@ -90,7 +91,23 @@ Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>
   stats_.stock_volume_mm3 = stock_->volume();
 }
 
+Simulation::Simulation(const Simulation& from, ForkTag)
+    : kin_(from.kin_),
+      tools_(from.tools_),
+      stock_(from.stock_->clone()),
+      fixtures_(from.fixtures_),
+      options_(from.options_),
+      contact_tolerance_(from.contact_tolerance_),
+      current_tool_(from.current_tool_),
+      started_(Clock::now()) {
+  stats_.stock_volume_mm3 = stock_->volume();
+}
+
 Simulation::~Simulation() = default;
+
+std::unique_ptr<Simulation> Simulation::fork() const {
+  return std::unique_ptr<Simulation>(new Simulation(*this, ForkTag{}));
+}
 
 const Simulation::ToolParts* Simulation::partsFor(int tool) {
   const auto it = tools_.find(tool);
@@ -107,6 +124,14 @@ void Simulation::checkCancel() const {
 }
 
 void Simulation::motion(const gcode::Motion& m) {
+  simulate(m, nullptr);
+}
+
+void Simulation::machineMotion(const gcode::Motion& m, double seconds) {
+  simulate(m, &seconds);
+}
+
+void Simulation::simulate(const gcode::Motion& m, const double* known_seconds) {
   checkCancel();
   switch (m.type) {
     case gcode::MotionType::kRapid:
@@ -130,7 +155,8 @@ void Simulation::motion(const gcode::Motion& m) {
       stats_.path_length += glm::length(poses[i].pose.tip - poses[i - 1].pose.tip);
       runStep(m, path, parts, poses[i - 1], poses[i], removed);
     }
-    const double seconds = kin::motionSeconds(m, kin_, path.toolLength());
+    const double seconds =
+        known_seconds != nullptr ? *known_seconds : kin::motionSeconds(m, kin_, path.toolLength());
     stats_.cycle_time_s += seconds;
     if (removed && m.type != gcode::MotionType::kRapid && parts != nullptr) {
       toolUse(stats_, m.tool).cutting_time_s += seconds;
@@ -160,6 +186,7 @@ void Simulation::checkLimits(const gcode::Motion& m, const kin::JointPath& path)
       if (m.block_text != nullptr) c.block = *m.block_text;
       c.tool = m.tool;
       c.joints = path.at(v->first_s);
+      c.path_s = v->first_s;
       c.position = toolPoseAt(path, c.joints).tip;
       c.axis = kin_.machine().joints[static_cast<std::size_t>(v->joint)].name;
       return c;
@@ -184,7 +211,8 @@ Collision Simulation::entry(const Step& step, CollisionType type, double f) cons
   c.line = step.m.pos.line;
   if (step.m.block_text != nullptr) c.block = *step.m.block_text;
   c.tool = step.m.tool;
-  c.joints = f >= 1.0 ? step.b.q : step.path.at(step.a.s + f * (step.b.s - step.a.s));
+  c.path_s = f >= 1.0 ? step.b.s : step.a.s + f * (step.b.s - step.a.s);
+  c.joints = f >= 1.0 ? step.b.q : step.path.at(c.path_s);
   c.position = toolPoseAt(step.path, c.joints).tip;  // on the path, not the step's chord
   return c;
 }
@@ -212,7 +240,7 @@ void Simulation::runStep(const gcode::Motion& m, const kin::JointPath& path, con
     if (!parts->holder.empty()) step.holder = sweep(step, parts->holder, 1.0);
     cutterStep(step, removed);
     stockContacts(step);
-    if (!fixtures_.empty()) fixtureContacts(step);
+    if (!fixtures_->empty()) fixtureContacts(step);
   }
   episodes_.endStep(false);
 }
@@ -322,8 +350,8 @@ void Simulation::fixtureContacts(const Step& step) {
       {step.shank ? &*step.shank : nullptr, step.parts.shank, ToolPartName::kShank},
       {step.holder ? &*step.holder : nullptr, step.parts.holder, ToolPartName::kHolder},
   };
-  for (std::size_t i = 0; i < fixtures_.size(); ++i) {
-    const geom::LineSolid& fixture = *fixtures_[i];
+  for (std::size_t i = 0; i < fixtures_->size(); ++i) {
+    const geom::LineSolid& fixture = *(*fixtures_)[i];
     const geom::Aabb fb = fixture.bounds();
     const auto material = [&fixture](int, int, double x, double y,
                                      std::vector<geom::Interval>& out) {
@@ -359,24 +387,33 @@ void Simulation::fixtureContacts(const Step& step) {
   }
 }
 
-Report Simulation::finish(std::int64_t blocks) {
+Report Simulation::snapshot(std::int64_t blocks) const {
   Report report;
-  const Clock::time_point t0 = Clock::now();
-  stats_.blocks = blocks;
-  stats_.final_volume_mm3 = stock_->volume();
-  stats_.removed_volume_mm3 = stats_.stock_volume_mm3 - stats_.final_volume_mm3;
+  RunStats stats = stats_;
+  stats.blocks = blocks;
+  stats.final_volume_mm3 = stock_->volume();
+  stats.removed_volume_mm3 = stats.stock_volume_mm3 - stats.final_volume_mm3;
   report.mdh = stock_->stats();
+  OverhangStats overhang = overhang_;
   const auto& d = report.mdh.directions;
-  overhang_.cells_not_plus_z = d[0] + d[1] + d[2] + d[3] + d[5];
-  overhang_.area_mm2 = overhangArea(*stock_);
+  overhang.cells_not_plus_z = d[0] + d[1] + d[2] + d[3] + d[5];
+  overhang.area_mm2 = overhangArea(*stock_);
   report.collisions = episodes_.collisions();
   report.status = report.collisions.empty() ? Status::kClean : Status::kCollisions;
-  report.stats = stats_;
-  report.overhang = overhang_;
+  report.stats = std::move(stats);
+  report.overhang = overhang;
+  report.timing = timing_;
+  report.timing.total_ms = msSince(started_);
+  report.grid_spacing = stock_->grid().h;
+  return report;
+}
+
+Report Simulation::finish(std::int64_t blocks) {
+  const Clock::time_point t0 = Clock::now();
+  Report report = snapshot(blocks);
   timing_.finish_ms += msSince(t0);
   timing_.total_ms = msSince(started_);
   report.timing = timing_;
-  report.grid_spacing = stock_->grid().h;
   return report;
 }
 

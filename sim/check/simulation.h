@@ -61,6 +61,17 @@ class Simulation final : public gcode::MotionSink {
   void motion(const gcode::Motion& m) override;
   void event(const gcode::Event& e) override;
 
+  // A motion whose machine time is known rather than programmed (a live machine's
+  // move between two polls, m.feed unused): checked and cut exactly as motion(m),
+  // `seconds` added to the cycle time. Same exceptions as motion().
+  void machineMotion(const gcode::Motion& m, double seconds);
+
+  // A copy to run ahead of this one (a look-ahead): the same machine, tools, fixtures
+  // and options, a deep copy of the stock as it is now, the current tool, and no
+  // collisions or statistics yet. `kin` and the fixtures are shared read-only, so
+  // the copy may run on another thread while this one goes on.
+  std::unique_ptr<Simulation> fork() const;
+
   // Called after every motion with its place and the number of motions so far.
   void setProgress(std::function<void(const gcode::SourcePos&, std::int64_t)> progress) {
     progress_ = std::move(progress);
@@ -72,6 +83,14 @@ class Simulation final : public gcode::MotionSink {
   // interpreter's count. Call once, after the program.
   Report finish(std::int64_t blocks);
 
+  // The report as it would be if the run ended now (a live shadow's): the same as
+  // finish() but leaves the run going. Walks the stock: not for every motion.
+  Report snapshot(std::int64_t blocks) const;
+
+  // Collision episodes so far, in order of their start; the last ones may still
+  // be deepening.
+  const std::vector<Collision>& collisions() const { return episodes_.collisions(); }
+
   const mdh::Stock& stock() const { return *stock_; }
   double contactTolerance() const { return contact_tolerance_; }
 
@@ -82,7 +101,10 @@ class Simulation final : public gcode::MotionSink {
     double reach = 0.0;
   };
   struct Step;
+  struct ForkTag {};
+  Simulation(const Simulation& from, ForkTag);
 
+  void simulate(const gcode::Motion& m, const double* seconds);
   const ToolParts* partsFor(int tool);
   void checkLimits(const gcode::Motion& m, const kin::JointPath& path);
   void runStep(const gcode::Motion& m, const kin::JointPath& path, const ToolParts* parts,
@@ -99,7 +121,8 @@ class Simulation final : public gcode::MotionSink {
   const kin::Kinematics& kin_;
   std::map<int, ToolParts> tools_;
   std::unique_ptr<mdh::Stock> stock_;
-  std::vector<std::unique_ptr<geom::LineSolid>> fixtures_;
+  // Shared with forks, never changed after construction.
+  std::shared_ptr<const std::vector<std::unique_ptr<geom::LineSolid>>> fixtures_;
   SimulationOptions options_;
   double contact_tolerance_ = 0.0;
   int current_tool_ = -1;

@@ -70,6 +70,10 @@ class Stock {
   Stock(const Stock&) = delete;
   Stock& operator=(const Stock&) = delete;
 
+  // A deep copy (every cell and heightmap): a look-ahead cuts the copy while the
+  // original goes on. Costs time and memory in proportion to the stock's cells.
+  std::unique_ptr<Stock> clone() const;
+
   // Removes the solid; tool_direction points from the tool tip to the spindle.
   CutResult cut(const geom::LineSolid& solid, const glm::dvec3& tool_direction);
   void setToolRadius(double mm) { toolRadius_ = mm; }
@@ -93,6 +97,8 @@ class Stock {
   int brickIndex(const std::array<int, 3>& b) const {
     return b[0] + bricks_[0] * (b[1] + bricks_[1] * b[2]);
   }
+  struct CloneTag {};
+  Stock(const Stock& other, CloneTag);
   const Cell* leafAt(const glm::dvec3& g) const;
   // Solid segments (grid units, merged across cells) of one grid line.
   void gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const;
