@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "sim/mdh/crossing_splits.h"
 #include "sim/mdh/direct_splits.h"
 #include "sim/mdh/fast_cut.h"
 #include "sim/mdh/good_bad_map.h"
@@ -123,12 +124,16 @@ std::vector<SplitCandidate> splitCandidates(const SampleGrid& g, const GoodBadMa
   auto key = [](const SplitCandidate& c) {
     return std::tuple(c.axis, c.lo, c.hi, int(c.type), c.complete, c.sole);
   };
+  // Nothing the thesis's split types can offer (conflicting lines one grid
+  // step apart): planes along a line that separate its crossings.
+  if (out.empty())
+    for (const GoodBadMap& m : maps) crossingSplits(g, m, box, out);
   std::sort(out.begin(), out.end(), [&](auto& x, auto& y) { return key(x) < key(y); });
   out.erase(std::unique(out.begin(), out.end(), [&](auto& x, auto& y) { return key(x) == key(y); }),
             out.end());
   if (out.empty()) {
-    // Nothing the thesis's rules can offer (sub-grid features): halve the
-    // longest side so the recursion still ends.
+    // Not even that (crossings on the same edge): halve the longest side so
+    // the recursion still ends.
     int axis = 0;
     for (int a = 1; a < 3; ++a)
       if (box.cubes(a) > box.cubes(axis)) axis = a;
