@@ -3,17 +3,15 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <ostream>
 
 #include "daemon/check_runner.h"
 #include "daemon/cli.h"
+#include "daemon/stock_stl.h"
 #include "protocol/json_fields.h"
 #include "protocol/report_json.h"
-#include "protocol/stl.h"
-#include "sim/mesh/mesher.h"
 
 namespace mdhd::cli {
 namespace {
@@ -133,27 +131,6 @@ bool writeReport(const nlohmann::json& doc, const std::string& path, std::ostrea
   return true;
 }
 
-// The final stock as a binary STL: written beside the target and renamed into place,
-// so a failed run never leaves a partial file under the asked name. "" or the error.
-std::string writeMesh(const mdh::Stock& stock, const std::string& path) {
-  const std::string partial = path + ".partial";
-  try {
-    {
-      std::ofstream file(partial, std::ios::binary | std::ios::trunc);
-      if (!file) return "cannot write " + partial;
-      protocol::StlWriter stl(file, "mdhd check: final stock (mm, workpiece frame)");
-      mesh::meshStock(stock, stl);
-      stl.finish();
-    }
-    std::filesystem::rename(partial, path);
-    return "";
-  } catch (const std::exception& e) {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    return std::string("cannot write ") + path + ": " + e.what();
-  }
-}
-
 }  // namespace
 
 int runCheck(const Args& args, std::ostream& out, std::ostream& err) {
@@ -180,7 +157,9 @@ int runCheck(const Args& args, std::ostream& out, std::ostream& err) {
     };
     std::string meshError;
     if (!a.mesh.empty()) {
-      controls.finished = [&](const mdh::Stock& stock) { meshError = writeMesh(stock, a.mesh); };
+      controls.finished = [&](const mdh::Stock& stock) {
+        meshError = writeStockStl(stock, a.mesh);
+      };
     }
     report = runCheckJob(loaded, controls);
     progress.done();

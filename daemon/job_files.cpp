@@ -75,6 +75,9 @@ gcode::InterpreterConfig interpreterConfig(const LoadedJob& loaded) {
   }
   const std::filesystem::path dir =
       loaded.program_path.empty() ? loaded.base_dir : loaded.program_path.parent_path();
+  // A job that came without a file (the service's) calls no subroutine files:
+  // a request must not reach the daemon's file system.
+  if (dir.empty()) return config;
   config.subroutine_loader = [dir](std::string_view name) -> std::unique_ptr<gcode::LineSource> {
     if (name.empty() || name.find_first_of("/\\") != std::string_view::npos ||
         name.find("..") != std::string_view::npos) {

@@ -13,7 +13,7 @@ namespace mdhd::cli {
 
 struct LoadedJob {
   protocol::Job job;                   // job.machine is always set after loading
-  std::filesystem::path base_dir;      // the job file's folder
+  std::filesystem::path base_dir;      // the job file's folder; empty: a job without files
   std::filesystem::path program_path;  // empty when the program is inline
 };
 
@@ -26,7 +26,7 @@ std::unique_ptr<gcode::LineSource> openProgram(const LoadedJob& loaded);
 
 // Interpreter set-up for a job: work offsets, the machine's home and axis letters,
 // the tool table from the job's tools, and o<name> call files from the program's
-// folder (names with path separators are refused).
+// folder (names with path separators are refused; none without a folder).
 gcode::InterpreterConfig interpreterConfig(const LoadedJob& loaded);
 
 }  // namespace mdhd::cli

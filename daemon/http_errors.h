@@ -1,0 +1,53 @@
+#pragma once
+// Errors of the HTTP API: {"error": {"code", "message", ...}} with a status of
+// the contract. A route handler throws HttpError; the service turns it into the
+// reply (and anything else it throws into a 500 that says nothing internal).
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace httplib {
+struct Request;
+struct Response;
+}  // namespace httplib
+
+namespace mdhd::service {
+
+class HttpError : public std::runtime_error {
+ public:
+  // `extra` fields (an object) go into the error object beside code and message.
+  HttpError(int status, std::string code, const std::string& message,
+            nlohmann::json extra = nlohmann::json::object())
+      : std::runtime_error(message),
+        status_(status),
+        code_(std::move(code)),
+        extra_(std::move(extra)) {}
+  int status() const { return status_; }
+  const std::string& code() const { return code_; }
+  const nlohmann::json& extra() const { return extra_; }
+
+ private:
+  int status_;
+  std::string code_;
+  nlohmann::json extra_;
+};
+
+// The error document for `e`.
+nlohmann::json errorBody(const HttpError& e);
+
+// Replies with `body` as application/json.
+void sendJson(httplib::Response& res, int status, const nlohmann::json& body);
+// Replies with an already serialised JSON text.
+void sendJsonText(httplib::Response& res, int status, std::string text);
+void sendError(httplib::Response& res, const HttpError& e);
+
+// The request body as JSON: 415 when it is declared as something else, 400 with
+// line and column when it does not parse.
+nlohmann::json parseJsonBody(const httplib::Request& req);
+
+// A query parameter as an integer in [lo, hi] (400 otherwise), or `fallback`.
+long long queryInteger(const httplib::Request& req, const char* name, long long fallback,
+                       long long lo, long long hi);
+
+}  // namespace mdhd::service

@@ -1,0 +1,243 @@
+#include "daemon/routes_jobs.h"
+
+#include <httplib.h>
+
+#include <fstream>
+
+#include "daemon/http_errors.h"
+#include "daemon/openapi_parts.h"
+#include "daemon/service_job.h"
+
+namespace mdhd::service {
+namespace {
+
+constexpr const char* kJobs = "/api/v1/jobs";
+
+JobRecord findJob(JobStore& store, const httplib::Request& req) {
+  const std::string id = pathParam(req, 1);
+  std::optional<JobRecord> record;
+  if (isJobId(id)) record = store.job(id);
+  if (!record)
+    throw HttpError(404, "not_found", "no job " + id.substr(0, 64), {{"id", id.substr(0, 64)}});
+  return *record;
+}
+
+double progressOf(const JobRecord& r, const WorkerPool& pool) {
+  if (r.status == "done" || r.status == "failed") return 1.0;
+  if (r.status == "running") return pool.progress(r.id).value_or(0.0);
+  return 0.0;
+}
+
+nlohmann::json summary(const JobRecord& r, const WorkerPool& pool) {
+  nlohmann::json j = {{"id", r.id},
+                      {"status", r.status},
+                      {"progress", progressOf(r, pool)},
+                      {"created_at", r.created_at},
+                      {"attempts", r.attempts}};
+  if (!r.machine_name.empty()) j["machine"] = r.machine_name;
+  if (!r.started_at.empty()) j["started_at"] = r.started_at;
+  if (!r.finished_at.empty()) j["finished_at"] = r.finished_at;
+  if (r.mesh) j["mesh"] = std::string(kJobs) + "/" + r.id + "/mesh";
+  return j;
+}
+
+// The status document with the stored report spliced in as it is (no re-parse).
+std::string statusText(const JobRecord& r, const WorkerPool& pool) {
+  std::string text = summary(r, pool).dump();
+  if (r.report) {
+    text.pop_back();
+    text += ",\"report\":" + *r.report + "}";
+  }
+  return text;
+}
+
+void postJob(const httplib::Request& req, httplib::Response& res, JobStore& store, WorkerPool& pool,
+             const ServiceConfig& config) {
+  AcceptedJob accepted =
+      acceptJob(parseJsonBody(req), config.max_program_bytes,
+                [&store](const std::string& name) -> std::optional<nlohmann::json> {
+                  const auto m = store.machine(name);
+                  if (!m) return std::nullopt;
+                  return nlohmann::json::parse(m->machine);
+                });
+  const std::string id = newJobId();
+  const std::string text = accepted.doc.dump();
+  switch (pool.submit(id, [&] { store.insertJob(id, text, accepted.machine_name); })) {
+    case WorkerPool::Submitted::kQueued:
+      break;
+    case WorkerPool::Submitted::kQueueFull:
+      res.set_header("Retry-After", "5");
+      throw HttpError(429, "queue_full",
+                      "the job queue is full (" + std::to_string(config.queue_limit) +
+                          " waiting); try again later");
+    case WorkerPool::Submitted::kStopping:
+      throw HttpError(503, "unavailable", "the service is shutting down");
+  }
+  res.set_header("Location", std::string(kJobs) + "/" + id);
+  sendJson(res, 202, {{"id", id}, {"status", "queued"}});
+}
+
+void deleteJob(const httplib::Request& req, httplib::Response& res, JobStore& store,
+               WorkerPool& pool) {
+  const JobRecord r = findJob(store, req);
+  if (r.status == "queued" || r.status == "running") {
+    const auto result = pool.cancel(r.id, std::chrono::seconds(5));
+    if (result == WorkerPool::Cancelled::kNotActive) {
+      // In the store but in no worker's hands (the pool is stopping): settle it here.
+      store.finishJob(r.id, "cancelled", std::nullopt, false);
+    }
+    const JobRecord now = *store.job(r.id);
+    sendJson(res, now.status == "cancelled" || now.status != "running" ? 200 : 202,
+             {{"id", r.id}, {"status", now.status}});
+    return;
+  }
+  store.deleteJob(r.id);
+  res.status = 204;
+}
+
+void sendMesh(const httplib::Request& req, httplib::Response& res, JobStore& store) {
+  const JobRecord r = findJob(store, req);
+  if (!r.mesh) {
+    throw HttpError(409, "no_mesh",
+                    r.status == "done" ? "the job's mesh could not be written"
+                                       : "the job has no mesh (status " + r.status + ")",
+                    {{"status", r.status}});
+  }
+  const std::filesystem::path path = store.meshPath(r.id);
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  auto file = std::make_shared<std::ifstream>(path, std::ios::binary);
+  if (ec || !*file) throw HttpError(409, "no_mesh", "the job's mesh is gone");
+  res.status = 200;
+  res.set_header("Content-Disposition", "attachment; filename=\"" + r.id + ".stl\"");
+  res.set_content_provider(static_cast<std::size_t>(size), "model/stl",
+                           [file](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                             char buf[1 << 16];
+                             file->seekg(static_cast<std::streamoff>(offset));
+                             file->read(buf,
+                                        static_cast<std::streamsize>(std::min(length, sizeof buf)));
+                             const std::streamsize n = file->gcount();
+                             return n > 0 && sink.write(buf, static_cast<std::size_t>(n));
+                           });
+}
+
+nlohmann::json jobStatusSchema() {
+  return {{"type", "object"},
+          {"required", {"id", "status", "progress"}},
+          {"properties",
+           {{"id", {{"type", "string"}, {"pattern", "^[0-9a-f]{32}$"}}},
+            {"status", {{"enum", {"queued", "running", "done", "failed", "cancelled"}}}},
+            {"progress", {{"type", "number"}, {"minimum", 0}, {"maximum", 1}}},
+            {"machine", {{"type", "string"}, {"description", "The registered machine it named."}}},
+            {"created_at", {{"type", "string"}, {"format", "date-time"}}},
+            {"started_at", {{"type", "string"}, {"format", "date-time"}}},
+            {"finished_at", {{"type", "string"}, {"format", "date-time"}}},
+            {"attempts", {{"type", "integer"}, {"description", "Times a worker started it."}}},
+            {"mesh", {{"type", "string"}, {"description", "Where the final stock is."}}},
+            {"report", schemaRef("Report")}}}};
+}
+
+}  // namespace
+
+void addJobRoutes(HttpService& http, JobStore& store, WorkerPool& pool,
+                  const ServiceConfig& config) {
+  http.addSchema("JobStatus", jobStatusSchema());
+  const nlohmann::json notFound = errorResponse("No such job.");
+  http.route(
+      {"POST",
+       kJobs,
+       {{"summary", "Submit a job"},
+        {"tags", {"jobs"}},
+        {"description",
+         "A job document (job-format.md); `machine` may name a registered machine. The "
+         "program is interpreted before the job is accepted."},
+        {"requestBody",
+         {{"required", true}, {"content", {{"application/json", {{"schema", schemaRef("Job")}}}}}}},
+        {"responses",
+         {{"202",
+           jsonResponse("Accepted and committed; Location names it.",
+                        {{"type", "object"},
+                         {"properties",
+                          {{"id", {{"type", "string"}}}, {"status", {{"const", "queued"}}}}}})},
+          {"400", errorResponse("Bad JSON or a bad field (`field` names it).")},
+          {"401", errorResponse("No bearer token.")},
+          {"403", errorResponse("Token not accepted.")},
+          {"413", errorResponse("Body or program over the limit.")},
+          {"415", errorResponse("Not application/json.")},
+          {"422", errorResponse("The program does not interpret (`line`, `column`, `block`).")},
+          {"429", errorResponse("The queue is full (Retry-After).")},
+          {"503", errorResponse("Shutting down.")}}}}},
+      [&](const httplib::Request& req, httplib::Response& res) {
+        postJob(req, res, store, pool, config);
+      });
+  http.route(
+      {"GET",
+       kJobs,
+       {{"summary", "Recent jobs, newest first, paged"},
+        {"tags", {"jobs"}},
+        {"parameters",
+         {{{"name", "limit"},
+           {"in", "query"},
+           {"schema", {{"type", "integer"}, {"minimum", 1}, {"maximum", 100}, {"default", 20}}}},
+          {{"name", "cursor"},
+           {"in", "query"},
+           {"description", "`next_cursor` of the previous page."},
+           {"schema", {{"type", "string"}}}}}},
+        {"responses",
+         {{"200", jsonResponse("A page of jobs (without reports).",
+                               {{"type", "object"},
+                                {"properties",
+                                 {{"jobs", {{"type", "array"}, {"items", schemaRef("JobStatus")}}},
+                                  {"next_cursor", {{"type", {"string", "null"}}}}}}})},
+          {"400", errorResponse("Bad limit or cursor.")}}}}},
+      [&](const httplib::Request& req, httplib::Response& res) {
+        const int limit = static_cast<int>(queryInteger(req, "limit", 20, 1, 100));
+        const std::int64_t cursor = queryInteger(req, "cursor", 0, 1, INT64_MAX);
+        const std::vector<JobRecord> page = store.jobs(limit + 1, cursor);
+        nlohmann::json jobs = nlohmann::json::array();
+        for (std::size_t i = 0; i < page.size() && i < static_cast<std::size_t>(limit); ++i) {
+          jobs.push_back(summary(page[i], pool));
+        }
+        nlohmann::json next = nullptr;
+        if (page.size() > static_cast<std::size_t>(limit))
+          next = std::to_string(page[static_cast<std::size_t>(limit) - 1].seq);
+        sendJson(res, 200, {{"jobs", jobs}, {"next_cursor", next}});
+      });
+  http.route({"GET",
+              std::string(kJobs) + "/{id}",
+              {{"summary", "A job's status, progress and, when finished, its report"},
+               {"tags", {"jobs"}},
+               {"responses",
+                {{"200", jsonResponse("The job.", schemaRef("JobStatus"))}, {"404", notFound}}}}},
+             [&](const httplib::Request& req, httplib::Response& res) {
+               sendJsonText(res, 200, statusText(findJob(store, req), pool));
+             });
+  http.route(
+      {"GET",
+       std::string(kJobs) + "/{id}/mesh",
+       {{"summary", "The final stock as binary STL (mm, workpiece frame)"},
+        {"tags", {"jobs"}},
+        {"responses",
+         {{"200",
+           {{"description", "Binary STL."},
+            {"content",
+             {{"model/stl", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}}},
+          {"404", notFound},
+          {"409", errorResponse("No mesh (yet): not done, or it failed.")}}}}},
+      [&](const httplib::Request& req, httplib::Response& res) { sendMesh(req, res, store); });
+  http.route({"DELETE",
+              std::string(kJobs) + "/{id}",
+              {{"summary", "Cancel a queued or running job; delete a finished one"},
+               {"tags", {"jobs"}},
+               {"responses",
+                {{"200", jsonResponse("Cancelled (a running job stops within a step).",
+                                      {{"type", "object"}})},
+                 {"202", jsonResponse("Cancel requested; still stopping.", {{"type", "object"}})},
+                 {"204", {{"description", "Deleted with its report and mesh."}}},
+                 {"404", notFound}}}}},
+             [&](const httplib::Request& req, httplib::Response& res) {
+               deleteJob(req, res, store, pool);
+             });
+}
+
+}  // namespace mdhd::service
