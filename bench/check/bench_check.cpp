@@ -5,7 +5,10 @@
 // When freecadcmd is installed, FreeCAD's path simulator runs the same dome at the same
 // grid spacing in the same run (peers/freecad/run_pathsim.py, hmap_from_stl.py).
 //
-//   bench_check [--densities 5,10,20] [--no-freecad] [--smoke]
+//   bench_check [--densities 5,10,20] [--no-freecad] [--smoke] [--threads N] [--only 3|5]
+//               [--passes K]
+// --threads: stock cutting threads (default 1); --only: just the 3-axis or the 5-axis dome;
+// --passes: only the first K zigzag passes (a slice for profiling; no FreeCAD run).
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -83,11 +86,12 @@ geom::Tool ballTool() {
 }
 
 // One run in this process: simulation, then the mesh into the error sink.
-nlohmann::json simulate(const Case& c, double density) {
+nlohmann::json simulate(const Case& c, double density, int threads) {
   const kin::Kinematics kin(c.machine);
   const std::vector<geom::Tool> tools{ballTool()};
   check::SimulationOptions options;
   options.density = density;
+  options.threads = threads;
   const Clock::time_point t0 = Clock::now();
   check::Simulation sim(kin, tools, c.stock, {}, options);
   gcode::InterpreterConfig config;
@@ -118,6 +122,7 @@ nlohmann::json simulate(const Case& c, double density) {
           {"leaves", r.mdh.leaves},
           {"memory_bytes", r.mdh.memoryBytes},
           {"removed_mm3", r.stats.removed_volume_mm3},
+          {"final_mm3", r.stats.final_volume_mm3},
           {"collisions", r.collisions.size()},
           {"mesh_s", meshWall},
           {"triangles", errors.triangles()},
@@ -128,7 +133,7 @@ nlohmann::json simulate(const Case& c, double density) {
 }
 
 // The run in a child process, so that its peak memory is its own.
-nlohmann::json simulateInChild(const Case& c, double density) {
+nlohmann::json simulateInChild(const Case& c, double density, int threads) {
   int fds[2];
   if (pipe(fds) != 0) return {{"error", "pipe"}};
   const pid_t pid = fork();
@@ -136,7 +141,7 @@ nlohmann::json simulateInChild(const Case& c, double density) {
     close(fds[0]);
     std::string text;
     try {
-      text = simulate(c, density).dump();
+      text = simulate(c, density, threads).dump();
     } catch (const std::exception& e) {
       text = nlohmann::json{{"error", e.what()}}.dump();
     }
@@ -216,6 +221,7 @@ std::vector<double> parseDensities(const std::string& s) {
 int main(int argc, char** argv) {
   std::vector<double> densities{5, 10, 20};
   bool withFreecad = true, smoke = false;
+  int threads = 1, only = 0, passes = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--densities" && i + 1 < argc)
@@ -224,8 +230,16 @@ int main(int argc, char** argv) {
       withFreecad = false;
     else if (a == "--smoke")
       smoke = true;
+    else if (a == "--threads" && i + 1 < argc)
+      threads = std::atoi(argv[++i]);
+    else if (a == "--only" && i + 1 < argc)
+      only = std::atoi(argv[++i]);
+    else if (a == "--passes" && i + 1 < argc)
+      passes = std::atoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke]\n");
+      std::fprintf(stderr,
+                   "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
+                   "[--threads N] [--only 3|5] [--passes K]\n");
       return 2;
     }
   }
@@ -234,9 +248,10 @@ int main(int argc, char** argv) {
     densities = {2};
     withFreecad = false;
   }
+  if (passes >= 0) withFreecad = false;  // the peer runs the whole program
   std::vector<Case> cases;
-  {
-    const bench::DomeProgram p = bench::domeProgram(lines, pts, true);
+  if (only != 5) {
+    const bench::DomeProgram p = bench::domeProgram(lines, pts, true, passes);
     cases.push_back({"dome 3-axis",
                      kin::presets::threeAxisMill(),
                      {{0, 0, 0}, {100, 100, 30}},
@@ -245,10 +260,11 @@ int main(int argc, char** argv) {
                      p.text,
                      p.moves});
   }
-  {
+  if (only != 3) {
     const kin::Machine m = kin::presets::acTrunnion();
     const kin::Kinematics kin(m);
-    const bench::DomeProgram p = bench::tiltedDomeProgram(kin, ballTool().length, lines, pts);
+    const bench::DomeProgram p =
+        bench::tiltedDomeProgram(kin, ballTool().length, lines, pts, passes);
     cases.push_back({"dome 5-axis", m, {{-50, -50, 0}, {50, 50, 30}}, 0, 0, p.text, p.moves});
   }
   withFreecad = withFreecad && !run("command -v freecadcmd").empty();
@@ -263,7 +279,7 @@ int main(int argc, char** argv) {
   int failures = 0;
   for (const Case& c : cases)
     for (double d : densities) {
-      const nlohmann::json r = simulateInChild(c, d);
+      const nlohmann::json r = simulateInChild(c, d, threads);
       if (r.contains("error")) {
         std::printf("%-12s %4g error: %s\n", c.name.c_str(), d,
                     r["error"].get<std::string>().c_str());
@@ -277,6 +293,10 @@ int main(int argc, char** argv) {
                   r["peak_rss_mb"].get<double>(), r["cells"].get<long long>(),
                   r["overcut_mm"].get<double>(), r["undercut_mm"].get<double>(),
                   r["collisions"].get<int>());
+      // Full precision, so runs can be compared bit for bit (threads, code changes).
+      std::printf("  final volume %.17g mm3, leaves %lld, cut %.0f ms, probes %.0f ms\n",
+                  r["final_mm3"].get<double>(), r["leaves"].get<long long>(),
+                  r["cut_ms"].get<double>(), r["probe_ms"].get<double>());
       if (withFreecad && c.name == "dome 3-axis") {
         const nlohmann::json f = freecad(work, peerGcode, d);
         if (f.contains("error")) {

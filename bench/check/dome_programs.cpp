@@ -21,10 +21,12 @@ std::string fmt(const char* f, double a, double b, double c) {
 }
 
 // The zigzag's points in order: (x, y) of every G1 after the first plunge.
+// passes >= 0: only the first that many lines (a slice of the same program, for profiling).
 template <typename Emit>
-void zigzag(int lines, int pts, double x0, double x1, double y0, double y1, Emit emit) {
+void zigzag(int lines, int pts, int passes, double x0, double x1, double y0, double y1, Emit emit) {
   const double dy = (y1 - y0) / (lines - 1), dx = (x1 - x0) / pts;
-  for (int j = 0; j < lines; ++j) {
+  const int n = passes >= 0 ? std::min(passes, lines) : lines;
+  for (int j = 0; j < n; ++j) {
     const double y = y0 + j * dy;
     if (j > 0) emit(j % 2 == 0 ? x0 : x1, y);
     for (int i = 1; i <= pts; ++i) emit(j % 2 == 0 ? x0 + i * dx : x1 - i * dx, y);
@@ -39,7 +41,7 @@ double domeZ(double x, double y, double cx, double cy) {
   return std::max(kFloor, s > 0 ? kCentreZ + std::sqrt(s) : -1e9);
 }
 
-DomeProgram domeProgram(int lines, int pts, bool setup) {
+DomeProgram domeProgram(int lines, int pts, bool setup, int passes) {
   DomeProgram p;
   p.text = "(dome zigzag finishing)\nG21\nG90\nG17\n";
   if (setup) p.text += "T1 M6\nG43 H1\nM3 S10000\n";
@@ -47,7 +49,7 @@ DomeProgram domeProgram(int lines, int pts, bool setup) {
   p.text += "G0 X0.0000 Y0.0000\n";
   p.text += fmt("G1 Z%.4f F1000\n", tipZ(0, 0, 50, 50), 0, 0);
   p.moves = 3;
-  zigzag(lines, pts, 0, 100, 0, 100, [&](double x, double y) {
+  zigzag(lines, pts, passes, 0, 100, 0, 100, [&](double x, double y) {
     p.text += fmt("G1 X%.4f Y%.4f Z%.4f\n", x, y, tipZ(x, y, 50, 50));
     ++p.moves;
   });
@@ -57,7 +59,8 @@ DomeProgram domeProgram(int lines, int pts, bool setup) {
   return p;
 }
 
-DomeProgram tiltedDomeProgram(const kin::Kinematics& kin, double tool_length, int lines, int pts) {
+DomeProgram tiltedDomeProgram(const kin::Kinematics& kin, double tool_length, int lines, int pts,
+                              int passes) {
   constexpr double kTilt = -15.0;
   auto cAt = [](double x) { return -30.0 + 60.0 * (x + 50.0) / 100.0; };
   auto tip = [&](double x, double y, double c) {
@@ -80,7 +83,7 @@ DomeProgram tiltedDomeProgram(const kin::Kinematics& kin, double tool_length, in
   p.moves = 3;
   glm::dvec3 last = t0;
   double lastC = cAt(-50);
-  zigzag(lines, pts, -50, 50, -50, 50, [&](double x, double y) {
+  zigzag(lines, pts, passes, -50, 50, -50, 50, [&](double x, double y) {
     lastC = cAt(x);
     last = tip(x, y, lastC);
     p.text += fmt("G1 X%.4f Y%.4f Z%.4f", last.x, last.y, last.z) + fmt(" C%.4f\n", lastC, 0, 0);

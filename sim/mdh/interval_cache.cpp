@@ -1,18 +1,37 @@
 #include "sim/mdh/interval_cache.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
+#include <stdexcept>
+#include <thread>
 
 namespace mdhd::mdh {
 
-struct IntervalCache::Row {
-  std::once_flag once;
-  int first = 0;                       // first line index (on axis u) with intervals
-  std::vector<std::uint32_t> offsets;  // per line from `first`, plus one end entry
-  std::vector<Span> spans;
-  mutable std::atomic<std::size_t> calls{0};
+// One line's intervals. state == the step's stamp: filled; stamp - 1: being
+// filled by another thread; anything else: not asked for yet this step.
+struct LineStore::Slot {
+  std::atomic<std::uint32_t> state{0};
+  std::uint32_t count = 0;
+  const Span* data = nullptr;
+  Span inline_[2];  // a convex tool crosses a line once; a union of a few, twice
 };
+
+LineStore::LineStore() = default;
+LineStore::~LineStore() = default;
+
+std::uint32_t LineStore::begin(std::size_t n) {
+  if (n > capacity_) {
+    capacity_ = std::max(n, capacity_ + capacity_ / 2);
+    slots_ = std::make_unique<Slot[]>(capacity_);  // all states 0: none filled
+  }
+  stamp_ += 2;
+  if (stamp_ == 0) {  // wrapped after 2^31 steps: forget every old stamp
+    for (std::size_t i = 0; i < capacity_; ++i) slots_[i].state.store(0);
+    stamp_ = 2;
+  }
+  overflow_.clear();
+  return stamp_;
+}
 
 namespace {
 
@@ -25,8 +44,9 @@ double snap(double g) {
 
 }  // namespace
 
-IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid)
-    : grid_(grid), solid_(solid) {
+IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid, LineStore* store,
+                             unsigned axes)
+    : grid_(grid), solid_(solid), store_(store), axes_(axes) {
   const geom::Aabb b = solid.bounds();
   for (int a = 0; a < 3; ++a) {
     const double lo = grid.toGrid(a, b.lo[a]);
@@ -38,70 +58,84 @@ IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid)
     touched_.hi[a] = ok ? static_cast<int>(std::clamp(std::ceil(hi), -1.0, top)) : 0;
   }
   if (touched_.empty()) return;
+  std::size_t n = 0;
   for (int a = 0; a < 3; ++a) {
-    const int nv = touched_.points(axisV(a));
-    rows_[a].resize(nv);
-    for (auto& r : rows_[a]) r = std::make_unique<Row>();
+    base_[a] = n;
+    if (axes_ & (1u << a))
+      n += static_cast<std::size_t>(touched_.points(axisU(a))) * touched_.points(axisV(a));
   }
+  if (store_ == nullptr) {
+    owned_ = std::make_unique<LineStore>();
+    store_ = owned_.get();
+  }
+  stamp_ = store_->begin(n);
 }
 
 IntervalCache::~IntervalCache() = default;
 
-void IntervalCache::fill(int axis, Row& row, int iv) const {
+void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const {
+  thread_local std::vector<geom::Interval> buf;
+  thread_local std::vector<Span> spans;
+  buf.clear();
+  spans.clear();
   const int u = axisU(axis), v = axisV(axis);
-  const double vmm = grid_.toMm(v, iv);
-  std::vector<geom::Interval> buf;
-  int first = -1;
-  for (int iu = touched_.lo[u]; iu <= touched_.hi[u]; ++iu) {
-    buf.clear();
-    solid_.lineIntervals(axis, grid_.toMm(u, iu), vmm, buf);
-    row.calls.fetch_add(1, std::memory_order_relaxed);
-    const std::size_t start = row.spans.size();
-    for (const geom::Interval& i : buf) {
-      const Span s{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
-      if (s.hi > s.lo) row.spans.push_back(s);  // drops NaN and inverted intervals
-    }
-    // The contract says sorted and disjoint; make sure, the arithmetic relies on it.
-    const auto begin = row.spans.begin() + static_cast<std::ptrdiff_t>(start);
-    auto byLo = [](const Span& x, const Span& y) { return x.lo < y.lo; };
-    if (!std::is_sorted(begin, row.spans.end(), byLo)) std::sort(begin, row.spans.end(), byLo);
-    std::size_t kept = start;
-    for (std::size_t k = start; k < row.spans.size(); ++k) {
-      if (kept > start && row.spans[k].lo <= row.spans[kept - 1].hi)
-        row.spans[kept - 1].hi = std::max(row.spans[kept - 1].hi, row.spans[k].hi);
-      else
-        row.spans[kept++] = row.spans[k];
-    }
-    row.spans.resize(kept);
-    if (kept == start && first < 0) continue;  // leading empty lines are not stored
-    if (first < 0) first = iu;
-    row.offsets.push_back(static_cast<std::uint32_t>(start));
+  solid_.lineIntervals(axis, grid_.toMm(u, iu), grid_.toMm(v, iv), buf);
+  queries_.fetch_add(1, std::memory_order_relaxed);
+  for (const geom::Interval& i : buf) {
+    const Span s{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
+    if (s.hi > s.lo) spans.push_back(s);  // drops NaN and inverted intervals
   }
-  if (first < 0) return;
-  // Trailing empty lines are dropped too: the row keeps its own extent.
-  while (row.offsets.size() > 1 && row.offsets.back() == row.spans.size()) row.offsets.pop_back();
-  row.first = first;
-  row.offsets.push_back(static_cast<std::uint32_t>(row.spans.size()));
+  // The contract says sorted and disjoint; make sure, the arithmetic relies on it.
+  auto byLo = [](const Span& x, const Span& y) { return x.lo < y.lo; };
+  if (!std::is_sorted(spans.begin(), spans.end(), byLo))
+    std::sort(spans.begin(), spans.end(), byLo);
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < spans.size(); ++k) {
+    if (kept > 0 && spans[k].lo <= spans[kept - 1].hi)
+      spans[kept - 1].hi = std::max(spans[kept - 1].hi, spans[k].hi);
+    else
+      spans[kept++] = spans[k];
+  }
+  slot.count = static_cast<std::uint32_t>(kept);
+  if (kept <= std::size(slot.inline_)) {
+    std::copy_n(spans.begin(), kept, slot.inline_);
+    slot.data = slot.inline_;
+    return;
+  }
+  auto heap = std::make_unique<Span[]>(kept);
+  std::copy_n(spans.begin(), kept, heap.get());
+  slot.data = heap.get();
+  const std::lock_guard lock(store_->overflowMutex_);
+  store_->overflow_.push_back(std::move(heap));
 }
 
 std::span<const Span> IntervalCache::line(int axis, int iu, int iv) const {
+  if (axis < 0 || axis > 2 || !(axes_ & (1u << axis)))
+    throw std::logic_error("mdh: interval cache asked for lines it was not made for");
   if (touched_.empty()) return {};
   const int u = axisU(axis), v = axisV(axis);
   if (iu < touched_.lo[u] || iu > touched_.hi[u] || iv < touched_.lo[v] || iv > touched_.hi[v])
     return {};
-  Row& row = *rows_[axis][iv - touched_.lo[v]];
-  std::call_once(row.once, [&] { fill(axis, row, iv); });
-  const int i = iu - row.first;
-  if (row.offsets.empty() || i < 0 || i + 1 >= static_cast<int>(row.offsets.size())) return {};
-  return std::span<const Span>(row.spans.data() + row.offsets[i],
-                               row.offsets[i + 1] - row.offsets[i]);
-}
-
-std::size_t IntervalCache::queries() const {
-  std::size_t n = 0;
-  for (const auto& axisRows : rows_)
-    for (const auto& r : axisRows) n += r->calls.load(std::memory_order_relaxed);
-  return n;
+  const std::size_t i = base_[axis] +
+                        static_cast<std::size_t>(iv - touched_.lo[v]) * touched_.points(u) +
+                        (iu - touched_.lo[u]);
+  LineStore::Slot& slot = store_->slots_[i];
+  for (std::uint32_t state; (state = slot.state.load(std::memory_order_acquire)) != stamp_;) {
+    if (state == stamp_ - 1) {
+      // Another thread is filling it (lines are shared only along brick faces).
+      std::this_thread::yield();
+      continue;
+    }
+    if (!slot.state.compare_exchange_strong(state, stamp_ - 1, std::memory_order_acquire)) continue;
+    try {
+      fill(axis, iu, iv, slot);
+    } catch (...) {
+      slot.state.store(state, std::memory_order_release);  // not filled: anyone may retry
+      throw;
+    }
+    slot.state.store(stamp_, std::memory_order_release);
+  }
+  return std::span<const Span>(slot.data, slot.count);
 }
 
 }  // namespace mdhd::mdh

@@ -85,7 +85,7 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
       tool_direction == glm::dvec3(0.0))
     tool_direction = {0.0, 0.0, 1.0};
   CutResult result;
-  const IntervalCache cache(grid_, solid);
+  const IntervalCache cache(grid_, solid, lines_.get());
   const GridBox& t = cache.touched();
   if (t.empty()) return result;
   std::vector<int> items;

@@ -13,6 +13,7 @@
 #include "sim/geometry/line_solid.h"
 #include "sim/mdh/cell.h"
 #include "sim/mdh/cut_counters.h"
+#include "sim/mdh/interval_cache.h"
 #include "sim/mdh/line_segments.h"
 #include "sim/mdh/split_rules.h"
 #include "sim/mdh/stats.h"
@@ -109,6 +110,7 @@ class Stock {
   int brickSize_[3]{};
   std::vector<Cell> roots_;
   CutCounters totals_;
+  std::unique_ptr<LineStore> lines_ = std::make_unique<LineStore>();  // reused by every cut
   std::uint64_t step_ = 0;
   double toolRadius_ = 0.0;
   int threads_ = 1;

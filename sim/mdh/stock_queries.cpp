@@ -190,7 +190,7 @@ SurfaceArea Stock::area() const {
 
 Overlap Stock::probe(const geom::LineSolid& solid, double tolerance) const {
   Overlap out;
-  const IntervalCache cache(grid_, solid);
+  const IntervalCache cache(grid_, solid, nullptr, 1u << 2);  // z lines only
   const GridBox& t = cache.touched();
   if (t.empty()) return out;
   const double h = grid_.h;

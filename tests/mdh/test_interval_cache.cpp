@@ -43,7 +43,7 @@ TEST(IntervalCache, BoundsBecomeAVertexBoxClippedToTheStock) {
   EXPECT_TRUE(IntervalCache(g, away).touched().empty());
 }
 
-TEST(IntervalCache, LinesAreInGridUnitsSnappedAndComputedOncePerRow) {
+TEST(IntervalCache, LinesAreInGridUnitsSnappedAndComputedOncePerLine) {
   const GridSpec g = grid();
   testing::BoxSolid box({1.0, 2.0, 3.0}, {2.0, 3.0, 4.0});
   CountingSolid counting(box);
@@ -52,13 +52,57 @@ TEST(IntervalCache, LinesAreInGridUnitsSnappedAndComputedOncePerRow) {
   ASSERT_EQ(line.size(), 1u);
   EXPECT_EQ(line[0].lo, 30.0);  // 3.0 / 0.1 snapped onto the grid plane
   EXPECT_EQ(line[0].hi, 40.0);
-  const int afterFirst = counting.calls;
-  EXPECT_EQ(afterFirst, 11);  // the row x = 1.0 .. 2.0 at y = 2.5
+  EXPECT_EQ(counting.calls, 1);  // only the line asked for, not its row
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(cache.line(2, 15, 25).size(), 1u);
+  EXPECT_EQ(counting.calls, 1);
   for (int i = 10; i <= 20; ++i) cache.line(2, i, 25);
-  EXPECT_EQ(counting.calls, afterFirst);
-  EXPECT_EQ(cache.queries(), std::size_t(afterFirst));
+  EXPECT_EQ(counting.calls, 11);
+  EXPECT_EQ(cache.queries(), 11u);
   EXPECT_TRUE(cache.line(2, 5, 25).empty());  // outside the bounds: no call at all
-  EXPECT_EQ(counting.calls, afterFirst);
+  EXPECT_EQ(counting.calls, 11);
+}
+
+TEST(IntervalCache, AReusedStoreForgetsThePreviousStep) {
+  const GridSpec g = grid();
+  LineStore store;
+  testing::BoxSolid first({1.0, 2.0, 3.0}, {2.0, 3.0, 4.0});
+  testing::BoxSolid second({1.0, 2.0, 3.5}, {2.0, 3.0, 5.0});
+  {
+    IntervalCache cache(g, first, &store);
+    ASSERT_EQ(cache.line(2, 15, 25).size(), 1u);
+    EXPECT_EQ(cache.line(2, 15, 25)[0].lo, 30.0);
+  }
+  IntervalCache cache(g, second, &store);
+  const auto line = cache.line(2, 15, 25);  // the same slot: recomputed, not the old one
+  ASSERT_EQ(line.size(), 1u);
+  EXPECT_EQ(line[0].lo, 35.0);
+  EXPECT_EQ(line[0].hi, 50.0);
+  EXPECT_EQ(cache.queries(), 1u);
+}
+
+// A solid whose lines cross it three times: more intervals than a slot holds inline.
+class CombSolid : public geom::LineSolid {
+ public:
+  geom::Aabb bounds() const override { return {{0, 0, 0}, {1, 1, 1}}; }
+  void lineIntervals(int, double, double, std::vector<geom::Interval>& out) const override {
+    out.push_back({0.6, 0.8});  // unsorted and overlapping on purpose
+    out.push_back({0.0, 0.2});
+    out.push_back({0.3, 0.5});
+    out.push_back({0.45, 0.55});
+  }
+};
+
+TEST(IntervalCache, ManyIntervalsAreSortedMergedAndKept) {
+  const GridSpec g = grid();
+  CombSolid comb;
+  IntervalCache cache(g, comb, nullptr, 1u << 0);
+  const auto line = cache.line(0, 3, 4);
+  ASSERT_EQ(line.size(), 3u);
+  EXPECT_NEAR(line[0].hi, 2.0, 1e-12);
+  EXPECT_NEAR(line[1].lo, 3.0, 1e-12);
+  EXPECT_NEAR(line[1].hi, 5.5, 1e-12);
+  EXPECT_NEAR(line[2].lo, 6.0, 1e-12);
+  EXPECT_THROW(cache.line(2, 3, 4), std::logic_error);  // made for x lines only
 }
 
 TEST(IntervalCache, AStockCutAsksEachLineAtMostOnce) {
