@@ -1,10 +1,13 @@
-// Figures for the swept volumes: lineIntervals calls per second over every grid line
-// (0.1 mm, three directions) of the lowest 6 mm of one step's box, per tool shape, for
-// a translational and a 5-axis step (tolerance 0.01 mm), against a plain ray-sphere
-// intersection over the lines of a 6 mm sphere's box; "lines" is how many lines one
-// step's box holds, "steps/s" how many such swept volumes are built per second.
+// Figures for the swept volumes: nanoseconds per lineIntervals call over every grid line
+// (0.1 mm) of the lowest 6 mm of one step's box, per tool shape and line direction, for
+// a 3-axis move (closed forms), the same move with the axis held tilted 15 degrees and
+// a 5-axis step turning 2 degrees (tolerance 0.01 mm; both through the section solver),
+// each against generalLineIntervals (the section solver for every line: the path
+// before the closed forms) on the same lines in the same run; a plain ray-sphere
+// intersection over a 6 mm sphere's lines for scale. "steps/s": swept volumes built
+// per second.
 //
-//   bench_swept_volume [--seconds S]   (S per measurement, default 0.5)
+//   bench_swept_volume [--seconds S]   (S per case and direction, default 0.5)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -139,16 +142,18 @@ int main(int argc, char** argv) {
     out.push_back({centre[l.axis] - h, centre[l.axis] + h});
   });
   std::printf("grid %.2f mm, 6 mm tools (flutes 18), %.2f s per figure\n", kGrid, seconds);
-  std::printf("%-36s %10s %8s %6s %9s %7s %9s\n", "case", "calls/s", "ns/call", "hit", "vs sphere",
-              "lines", "steps/s");
-  std::printf("%-36s %10.3g %8.1f %5.0f%% %9s %7zu %9s\n", "baseline ray-sphere",
-              base.callsPerSecond, 1e9 / base.callsPerSecond, 100 * base.hitFraction, "1",
-              sphereLines.size(), "-");
+  std::printf("baseline ray-sphere: %.1f ns per line (%zu lines, %.0f%% hit)\n",
+              1e9 / base.callsPerSecond, sphereLines.size(), 100 * base.hitFraction);
 
   const ToolPose start{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
   const ToolPose moved{{1.0, 0.4, -0.2}, {0.0, 0.0, 1.0}};
   const double tilt = 2.0 * std::acos(-1.0) / 180.0;  // 2 degrees in this step
   const ToolPose turned{{1.0, 0.4, -0.2}, {std::sin(tilt), 0.0, std::cos(tilt)}};
+  // The same move with the axis held tilted 15 degrees: no closed form applies.
+  const double t15 = 15.0 * std::acos(-1.0) / 180.0;
+  const glm::dvec3 tilted(std::sin(t15), 0.0, std::cos(t15));
+  const ToolPose tiltStart{start.tip, tilted};
+  const ToolPose tiltMoved{moved.tip, tilted};
   struct Case {
     ToolShape shape;
     double cornerTolerance;
@@ -158,6 +163,19 @@ int main(int argc, char** argv) {
                         {ToolShape::kBull, kDefaultCornerTolerance},
                         {ToolShape::kBull, 0.01},
                         {ToolShape::kDrill, kDefaultCornerTolerance}};
+  std::printf(
+      "\nper line direction: lineIntervals (closed forms where the axis is a grid axis) "
+      "against generalLineIntervals (the section solver for every body), same lines\n");
+  std::printf("%-34s %4s %7s %9s %9s %7s %6s %9s\n", "case", "line", "lines", "fast ns",
+              "general ns", "speedup", "hit", "steps/s");
+  struct Move {
+    const char* name;
+    const ToolPose* a;
+    const ToolPose* b;
+  };
+  const Move moves[] = {{"3-axis move 1.1 mm", &start, &moved},
+                        {"tilted 15 deg move 1.1 mm", &tiltStart, &tiltMoved},
+                        {"5-axis 2 deg", &start, &turned}};
   for (const Case& c : cases) {
     const ToolPart part =
         makeToolPart(benchTool(c.shape), ToolPartKind::kCutter, c.cornerTolerance);
@@ -165,20 +183,28 @@ int main(int argc, char** argv) {
         std::string(toolShapeName(c.shape)) +
         (c.shape == ToolShape::kBull ? "(" + std::to_string(part.bodies[0].pieces.size()) + " pcs)"
                                      : "");
-    for (const ToolPose* end : {&moved, &turned}) {
-      const SweptVolume s = SweptVolume::between(part, start, *end, 0, 0.01);
-      const std::vector<Line> lines = gridLines(lowerBox(s));
-      const Rate rate = measure(lines, seconds, [&](const Line& l, std::vector<Interval>& out) {
-        s.lineIntervals(l.axis, l.u, l.v, out);
-      });
-      const std::string name =
-          shape + (end == &moved
-                       ? " move 1.1 mm"
-                       : " 5-axis 2 deg " + std::to_string(s.translations().size()) + " sub");
-      std::printf("%-36s %10.3g %8.1f %5.0f%% %9.3f %7zu %9.3g\n", name.c_str(),
-                  rate.callsPerSecond, 1e9 / rate.callsPerSecond, 100 * rate.hitFraction,
-                  rate.callsPerSecond / base.callsPerSecond, lines.size(),
-                  buildRate(part, start, *end, seconds / 4));
+    for (const Move& m : moves) {
+      const SweptVolume s = SweptVolume::between(part, *m.a, *m.b, 0, 0.01);
+      const std::vector<Line> all = gridLines(lowerBox(s));
+      const double steps = buildRate(part, *m.a, *m.b, seconds / 8);
+      for (int axis = 0; axis < 3; ++axis) {
+        std::vector<Line> lines;
+        for (const Line& l : all)
+          if (l.axis == axis) lines.push_back(l);
+        const Rate fast =
+            measure(lines, seconds / 3, [&](const Line& l, std::vector<Interval>& out) {
+              s.lineIntervals(l.axis, l.u, l.v, out);
+            });
+        const Rate general =
+            measure(lines, seconds / 3, [&](const Line& l, std::vector<Interval>& out) {
+              s.generalLineIntervals(l.axis, l.u, l.v, out);
+            });
+        std::string name = shape + " " + m.name;
+        if (m.b == &turned) name += " " + std::to_string(s.translations().size()) + " sub";
+        std::printf("%-34s %4c %7zu %9.1f %9.1f %7.2f %5.0f%% %9.3g\n", name.c_str(), "xyz"[axis],
+                    lines.size(), 1e9 / fast.callsPerSecond, 1e9 / general.callsPerSecond,
+                    fast.callsPerSecond / general.callsPerSecond, 100 * fast.hitFraction, steps);
+      }
     }
   }
   return 0;

@@ -167,14 +167,23 @@ void SweptVolume::build(const ToolPart& part, const std::vector<Translation>& mo
     translations_.push_back(m);
   }
   bounds_ = emptyBox();
-  for (const Translation& tr : translations_) addTranslation(part, tr);
+  // One lower envelope per body of the part, shared by all its translations.
+  std::vector<int> profileOf;
+  for (const ConvexBody& cb : part.bodies) {
+    std::optional<AxialProfile> p = axialProfile(cb);
+    profileOf.push_back(p ? static_cast<int>(profiles_.size()) : -1);
+    if (p) profiles_.push_back(std::move(*p));
+  }
+  for (const Translation& tr : translations_) addTranslation(part, profileOf, tr);
 }
 
-void SweptVolume::addTranslation(const ToolPart& part, const Translation& tr) {
+void SweptVolume::addTranslation(const ToolPart& part, const std::vector<int>& profileOf,
+                                 const Translation& tr) {
   const glm::dvec3 d = tr.to - tr.from;
   const double len = glm::length(d);
   const glm::dvec3 w = tr.axis;
-  for (const ConvexBody& cb : part.bodies) {
+  for (std::size_t bi = 0; bi < part.bodies.size(); ++bi) {
+    const ConvexBody& cb = part.bodies[bi];
     SweptBody body;
     body.tip = tr.from;
     body.axis = w;
@@ -188,6 +197,24 @@ void SweptVolume::addTranslation(const ToolPart& part, const Translation& tr) {
       t.re2 = 1.0 - w[a] * w[a];
       t.rerd = body.dir[a] - w[a] * zd;
       t.rd2 = len > 0.0 ? 1.0 - zd * zd : 0.0;
+      const int a1 = (a + 1) % 3;
+      const int a2 = (a + 2) % 3;
+      // The closed forms need the axis exactly on or square to the grid axis.
+      if (std::abs(w[a]) == 1.0 && w[a1] == 0.0 && w[a2] == 0.0 && profileOf[bi] >= 0) {
+        body.alongAxis = a;
+        body.profile = profileOf[bi];
+        body.along = AxialMove{body.dir[a1], body.dir[a2],
+                               body.dir[a1] * body.dir[a1] + body.dir[a2] * body.dir[a2],
+                               w[a] * body.dir[a], len};
+      }
+      if (w[a] == 0.0) {
+        glm::dvec3 e(0.0);
+        e[a] = 1.0;
+        const glm::dvec3 n = glm::cross(w, e);
+        body.crossing[a] = true;
+        body.crossNormal[a] = n / glm::length(n);
+        body.cross[a] = CrossMove{zd, glm::dot(body.dir, body.crossNormal[a]), body.dir[a], len};
+      }
     }
     // Candidates on an edge are kept within these; far below the grid's resolution.
     const double scale = part.reach() + len + 1.0;
@@ -196,7 +223,7 @@ void SweptVolume::addTranslation(const ToolPart& part, const Translation& tr) {
     body.box = emptyBox();
     body.pieceBegin = static_cast<int>(pieces_.size());
     for (const RevolvedPiece& rp : cb.pieces) {
-      SweptPiece sp{rp.z0, rp.z1, rp.alpha, rp.beta, rp.gamma, {}};
+      SweptPiece sp{{rp.z0, rp.z1, rp.alpha, rp.beta, rp.gamma}, {}};
       sp.box = cylinderBox(tr.from, w, rp.z0, rp.z1, rp.maxRadius());
       grow(sp.box, cylinderBox(tr.to, w, rp.z0, rp.z1, rp.maxRadius()));
       grow(body.box, sp.box);
@@ -223,17 +250,18 @@ bool SweptVolume::pieceExtent(const SweptBody& body, const SweptPiece& p, const 
   const SectionTolerance tol{body.linearTol, body.quadricTol};
   // g = |r|^2 - alpha - beta z - gamma z^2, in (t, s)
   Quadric2 g;
-  g.a = k.re2 - p.gamma * k.ze * k.ze;
-  g.b = -k.rerd + p.gamma * k.ze * k.zd;
-  g.c = k.rd2 - p.gamma * k.zd * k.zd;
-  g.d = f.r0re - 0.5 * p.beta * k.ze - p.gamma * f.z0 * k.ze;
-  g.e = -f.r0rd + 0.5 * p.beta * k.zd + p.gamma * f.z0 * k.zd;
-  g.f = f.r0r0 - p.alpha - p.beta * f.z0 - p.gamma * f.z0 * f.z0;
+  const PieceQuadric& q = p.q;
+  g.a = k.re2 - q.gamma * k.ze * k.ze;
+  g.b = -k.rerd + q.gamma * k.ze * k.zd;
+  g.c = k.rd2 - q.gamma * k.zd * k.zd;
+  g.d = f.r0re - 0.5 * q.beta * k.ze - q.gamma * f.z0 * k.ze;
+  g.e = -f.r0rd + 0.5 * q.beta * k.zd + q.gamma * f.z0 * k.zd;
+  g.f = f.r0r0 - q.alpha - q.beta * f.z0 - q.gamma * f.z0 * f.z0;
   if (k.ze != 0.0) {
     const HalfPlane h[4] = {{0.0, -1.0, 0.0},
                             {0.0, 1.0, -body.length},
-                            {-k.ze, k.zd, p.z0 - f.z0},
-                            {k.ze, -k.zd, f.z0 - p.z1}};
+                            {-k.ze, k.zd, q.z0 - f.z0},
+                            {k.ze, -k.zd, f.z0 - q.z1}};
     return sectionExtent(g, h, tol, lo, hi);
   }
   // The line is square to the axis: z does not change along it, so the piece's z range
@@ -241,10 +269,10 @@ bool SweptVolume::pieceExtent(const SweptBody& body, const SweptPiece& p, const 
   double s0 = 0.0;
   double s1 = body.length;
   if (k.zd == 0.0) {
-    if (f.z0 < p.z0 - tol.linear || f.z0 > p.z1 + tol.linear) return false;
+    if (f.z0 < q.z0 - tol.linear || f.z0 > q.z1 + tol.linear) return false;
   } else {
-    const double a = (f.z0 - p.z1) / k.zd;
-    const double b = (f.z0 - p.z0) / k.zd;
+    const double a = (f.z0 - q.z1) / k.zd;
+    const double b = (f.z0 - q.z0) / k.zd;
     s0 = std::max(s0, std::min(a, b));
     s1 = std::min(s1, std::max(a, b));
     if (s0 > s1) {
@@ -302,7 +330,47 @@ bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double
   return true;
 }
 
+bool SweptVolume::crossBodyInterval(const SweptBody& body, int axis, double u, double v,
+                                    Interval& out) const {
+  const int i1 = (axis + 1) % 3;
+  const int i2 = (axis + 2) % 3;
+  glm::dvec3 delta(0.0);
+  delta[i1] = u - body.tip[i1];
+  delta[i2] = v - body.tip[i2];
+  const CrossMove& m = body.cross[axis];
+  const double zeta0 = glm::dot(body.axis, delta);
+  const double h0 = glm::dot(body.crossNormal[axis], delta);
+  // The heights on the axis the line passes over s in [0, L].
+  const double za = std::min(zeta0, zeta0 - m.length * m.zd) - body.linearTol;
+  const double zb = std::max(zeta0, zeta0 - m.length * m.zd) + body.linearTol;
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (int i = body.pieceBegin; i < body.pieceEnd; ++i) {
+    const SweptPiece& p = pieces_[i];
+    if (p.q.z1 < za || p.q.z0 > zb) continue;
+    if (u < p.box.lo[i1] || u > p.box.hi[i1] || v < p.box.lo[i2] || v > p.box.hi[i2]) continue;
+    double plo = 0.0;
+    double phi = 0.0;
+    if (!crossExtent(p.q, m, zeta0, h0, body.linearTol, body.quadricTol, plo, phi)) continue;
+    lo = std::min(lo, plo);
+    hi = std::max(hi, phi);
+  }
+  if (!(hi > lo)) return false;
+  out = Interval{lo + body.tip[axis], hi + body.tip[axis]};
+  return out.hi > out.lo;
+}
+
 void SweptVolume::lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const {
+  intervals(axis, u, v, false, out);
+}
+
+void SweptVolume::generalLineIntervals(int axis, double u, double v,
+                                       std::vector<Interval>& out) const {
+  intervals(axis, u, v, true, out);
+}
+
+void SweptVolume::intervals(int axis, double u, double v, bool general,
+                            std::vector<Interval>& out) const {
   if (axis < 0 || axis > 2) return;
   const int i1 = (axis + 1) % 3;
   const int i2 = (axis + 2) % 3;
@@ -318,7 +386,26 @@ void SweptVolume::lineIntervals(int axis, double u, double v, std::vector<Interv
       covered = body.box.lo[axis] >= out[i].lo && body.box.hi[axis] <= out[i].hi;
     if (covered) continue;
     Interval iv;
-    if (bodyInterval(body, axis, u, v, iv)) out.push_back(iv);
+    bool hit = false;
+    if (general) {
+      hit = bodyInterval(body, axis, u, v, iv);
+    } else if (body.alongAxis == axis) {
+      double lo = 0.0;
+      double hi = 0.0;
+      hit = axialExtent(profiles_[body.profile], body.along, u - body.tip[i1], v - body.tip[i2],
+                        body.linearTol, lo, hi);
+      // Heights run along the line with the axis' sign.
+      const double base = body.tip[axis];
+      if (body.axis[axis] > 0.0)
+        iv = Interval{base + lo, base + hi};
+      else
+        iv = Interval{base - hi, base - lo};
+    } else if (body.crossing[axis]) {
+      hit = crossBodyInterval(body, axis, u, v, iv);
+    } else {
+      hit = bodyInterval(body, axis, u, v, iv);
+    }
+    if (hit && iv.hi > iv.lo) out.push_back(iv);
   }
   if (out.size() - first < 2) return;
   // Bodies overlap: sort and merge in place, so nothing but `out` is allocated.

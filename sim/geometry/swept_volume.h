@@ -9,6 +9,8 @@
 #include <span>
 #include <vector>
 
+#include "sim/geometry/axial_sweep.h"
+#include "sim/geometry/cross_sweep.h"
 #include "sim/geometry/line_solid.h"
 #include "sim/geometry/tool_part.h"
 #include "sim/geometry/tool_pose.h"
@@ -47,7 +49,13 @@ class SweptVolume final : public LineSolid {
   // Ends where the line crosses the surface are good to ~1e-12 of the part's size;
   // where it only grazes it (a tangent, a cone's apex) to ~1e-8. Lines that only touch
   // the solid (zero length) give nothing. Cost grows with translations().size().
+  // Translations whose axis is a grid axis answer lines along it (axial_sweep.h) and
+  // square to it (cross_sweep.h) in closed form; every other line and body goes
+  // through the general solver (section_solver.h).
   void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const override;
+  // The same through the general solver for every body and line: the reference the
+  // closed forms are tested and benchmarked against.
+  void generalLineIntervals(int axis, double u, double v, std::vector<Interval>& out) const;
 
   // The translational sweeps this is exactly the union of.
   const std::vector<Translation>& translations() const { return translations_; }
@@ -61,7 +69,7 @@ class SweptVolume final : public LineSolid {
     double ze = 0, zd = 0, re2 = 0, rerd = 0, rd2 = 0;
   };
   struct SweptPiece {
-    double z0, z1, alpha, beta, gamma;
+    PieceQuadric q;
     Aabb box;
   };
   struct SweptBody {
@@ -75,19 +83,31 @@ class SweptVolume final : public LineSolid {
     AxisTerms terms[3];
     int pieceBegin = 0;
     int pieceEnd = 0;
+    // Closed forms: lines along `alongAxis` (the tool's axis, -1 if it is no grid
+    // axis or the body has no profile) and square to the axis (crossing[a]).
+    int alongAxis = -1;
+    int profile = -1;
+    AxialMove along;
+    bool crossing[3] = {false, false, false};
+    CrossMove cross[3];
+    glm::dvec3 crossNormal[3];
   };
 
   SweptVolume(const ToolPart& part, const std::vector<Translation>& moves, double errorBound);
   void build(const ToolPart& part, const std::vector<Translation>& moves);
-  void addTranslation(const ToolPart& part, const Translation& tr);
+  void addTranslation(const ToolPart& part, const std::vector<int>& profileOf,
+                      const Translation& tr);
   struct LineFrame;
+  void intervals(int axis, double u, double v, bool general, std::vector<Interval>& out) const;
   bool bodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
+  bool crossBodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
   bool pieceExtent(const SweptBody& body, const SweptPiece& p, const LineFrame& f, double& lo,
                    double& hi) const;
 
   std::vector<Translation> translations_;
   std::vector<SweptBody> bodies_;
   std::vector<SweptPiece> pieces_;
+  std::vector<AxialProfile> profiles_;
   Aabb bounds_;
   double errorBound_ = 0.0;
 };
