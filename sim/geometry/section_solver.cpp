@@ -118,6 +118,109 @@ bool sectionExtent(const Quadric2& g, const HalfPlane (&h)[4], const SectionTole
   return true;
 }
 
+namespace {
+
+// Real roots of A x^2 + 2 B x + C = 0 (a tangent whose discriminant rounding made
+// negative still touches); none when the quadratic is constant.
+int roots(double A, double B, double C, double (&x)[2]) {
+  if (std::abs(A) <= kTiny * (std::abs(B) + std::abs(C))) {
+    if (B == 0.0) return 0;
+    x[0] = -C / (2.0 * B);
+    return 1;
+  }
+  double disc = B * B - A * C;
+  if (disc < 0.0) {
+    if (disc < -1e-12 * (B * B + std::abs(A * C))) return 0;
+    disc = 0.0;
+  }
+  const double q = -(B + std::copysign(std::sqrt(disc), B));
+  if (q == 0.0) {
+    x[0] = 0.0;
+    return 1;
+  }
+  x[0] = q / A;
+  x[1] = C / q;
+  return 2;
+}
+
+}  // namespace
+
+bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol, double& lo,
+                double& hi) {
+  const double L = band.length;
+  const double ze = band.ze;
+  const double zd = band.zd;
+  const double eps = tol.linear;
+  auto inS = [&](double s) { return s >= -eps && s <= L + eps; };
+  auto inZ = [&](double t, double s) {
+    const double z = band.zeta0 + ze * t - zd * s;
+    return z >= band.z0 - eps && z <= band.z1 + eps;
+  };
+  Extent ext;
+  const double ends[2] = {0.0, L};
+  const double slab[2] = {band.z0, band.z1};
+  // Corners.
+  for (const double s : ends)
+    for (const double z : slab) {
+      const double t = (z - band.zeta0 + zd * s) / ze;
+      if (g(t, s) <= tol.quadric) ext.add(t);
+    }
+  double x[2];
+  // The edges s = 0 and s = L: g(t, s) = a t^2 + 2 (b s + d) t + (c s^2 + 2 e s + f).
+  for (const double s : ends) {
+    const int n = roots(g.a, g.b * s + g.d, (g.c * s + 2.0 * g.e) * s + g.f, x);
+    for (int i = 0; i < n; ++i)
+      if (inZ(x[i], s)) ext.add(x[i]);
+  }
+  // The slab's edges: t = tau + mu s.
+  const double mu = zd / ze;
+  for (const double z : slab) {
+    const double tau = (z - band.zeta0) / ze;
+    const double A = (g.a * mu + 2.0 * g.b) * mu + g.c;
+    const double B = g.a * tau * mu + g.b * tau + g.d * mu + g.e;
+    const double C = (g.a * tau + 2.0 * g.d) * tau + g.f;
+    const int n = roots(A, B, C, x);
+    for (int i = 0; i < n; ++i)
+      if (inS(x[i])) ext.add(tau + mu * x[i]);
+  }
+  // Where g = 0 runs parallel to s: b t + c s + e = 0, solved for its larger term.
+  if (std::abs(g.c) >= std::abs(g.b) && g.c != 0.0) {
+    const double nu = -g.b / g.c;  // s = s0 + nu t
+    const double s0 = -g.e / g.c;
+    const double A = g.a + (2.0 * g.b + g.c * nu) * nu;
+    const double B = g.b * s0 + g.c * s0 * nu + g.d + g.e * nu;
+    const double C = (g.c * s0 + 2.0 * g.e) * s0 + g.f;
+    const int n = roots(A, B, C, x);
+    for (int i = 0; i < n; ++i) {
+      const double s = s0 + nu * x[i];
+      if (inS(s) && inZ(x[i], s)) ext.add(x[i]);
+    }
+  } else if (g.b != 0.0) {
+    const double lam = -g.c / g.b;  // t = t0 + lam s
+    const double t0 = -g.e / g.b;
+    const double A = (g.a * lam + 2.0 * g.b) * lam + g.c;
+    const double B = g.a * t0 * lam + g.b * t0 + g.d * lam + g.e;
+    const double C = (g.a * t0 + 2.0 * g.d) * t0 + g.f;
+    const int n = roots(A, B, C, x);
+    for (int i = 0; i < n; ++i) {
+      const double t = t0 + lam * x[i];
+      if (inS(x[i]) && inZ(t, x[i])) ext.add(t);
+    }
+  }
+  // A singular point of g on its zero set (the apex of a cone cut through its tip).
+  const double det = g.a * g.c - g.b * g.b;
+  if (!(det > 0.0 && g.a > 0.0) &&
+      std::abs(det) > 1e-12 * (g.a * g.a + 2.0 * g.b * g.b + g.c * g.c)) {
+    const double t = (-g.d * g.c + g.e * g.b) / det;
+    const double s = (-g.e * g.a + g.d * g.b) / det;
+    if (g(t, s) <= tol.quadric && inS(s) && inZ(t, s)) ext.add(t);
+  }
+  if (!(ext.lo <= ext.hi)) return false;
+  lo = ext.lo;
+  hi = ext.hi;
+  return true;
+}
+
 bool stripExtent(const Quadric2& g, double s0, double s1, const SectionTolerance& tol, double& lo,
                  double& hi) {
   const HalfPlane h[4] = {{0.0, -1.0, s0}, {0.0, 1.0, -s1}, {}, {}};

@@ -35,6 +35,16 @@ struct SectionTolerance {
 bool sectionExtent(const Quadric2& g, const HalfPlane (&h)[4], const SectionTolerance& tol,
                    double& lo, double& hi);
 
+// The same for the shape every piece of a translational sweep gives (a band): the
+// half-planes 0 <= s <= length and z0 <= zeta0 + ze t - zd s <= z1 (ze != 0), a
+// parallelogram. Its four corners need no half-plane tests and each edge is one
+// quadratic in one unknown: the candidates of sectionExtent at a fraction of the cost.
+struct Band {
+  double length = 0, ze = 1, zd = 0, zeta0 = 0, z0 = 0, z1 = 0;
+};
+bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol, double& lo,
+                double& hi);
+
 // The same for the strip s0 <= s <= s1 alone, with g.a > 0 (g bounded in t): the case
 // of a line perpendicular to the tool's axis, where the piece's z range only limits s.
 bool stripExtent(const Quadric2& g, double s0, double s1, const SectionTolerance& tol, double& lo,

@@ -245,7 +245,7 @@ struct SweptVolume::LineFrame {
 };
 
 bool SweptVolume::pieceExtent(const SweptBody& body, const SweptPiece& p, const LineFrame& f,
-                              double& lo, double& hi) const {
+                              bool general, double& lo, double& hi) const {
   const AxisTerms& k = body.terms[f.axis];
   const SectionTolerance tol{body.linearTol, body.quadricTol};
   // g = |r|^2 - alpha - beta z - gamma z^2, in (t, s)
@@ -257,6 +257,8 @@ bool SweptVolume::pieceExtent(const SweptBody& body, const SweptPiece& p, const 
   g.d = f.r0re - 0.5 * q.beta * k.ze - q.gamma * f.z0 * k.ze;
   g.e = -f.r0rd + 0.5 * q.beta * k.zd + q.gamma * f.z0 * k.zd;
   g.f = f.r0r0 - q.alpha - q.beta * f.z0 - q.gamma * f.z0 * f.z0;
+  if (k.ze != 0.0 && !general)
+    return bandExtent(g, Band{body.length, k.ze, k.zd, f.z0, q.z0, q.z1}, tol, lo, hi);
   if (k.ze != 0.0) {
     const HalfPlane h[4] = {{0.0, -1.0, 0.0},
                             {0.0, 1.0, -body.length},
@@ -283,7 +285,7 @@ bool SweptVolume::pieceExtent(const SweptBody& body, const SweptPiece& p, const 
   return stripExtent(g, s0, s1, tol, lo, hi);
 }
 
-bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double v,
+bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double v, bool general,
                                Interval& out) const {
   LineFrame f{axis, (axis + 1) % 3, (axis + 2) % 3, u, v, 0, 0, 0, 0};
   glm::dvec3 delta(0.0);
@@ -306,7 +308,7 @@ bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double
     if (p.box.lo[axis] >= lo && p.box.hi[axis] <= hi) return Result::kSkipped;  // inside hull
     double plo = 0.0;
     double phi = 0.0;
-    if (!pieceExtent(body, p, f, plo, phi)) return Result::kMiss;
+    if (!pieceExtent(body, p, f, general, plo, phi)) return Result::kMiss;
     lo = std::min(lo, plo + base);
     hi = std::max(hi, phi + base);
     return Result::kHit;
@@ -388,7 +390,7 @@ void SweptVolume::intervals(int axis, double u, double v, bool general,
     Interval iv;
     bool hit = false;
     if (general) {
-      hit = bodyInterval(body, axis, u, v, iv);
+      hit = bodyInterval(body, axis, u, v, true, iv);
     } else if (body.alongAxis == axis) {
       double lo = 0.0;
       double hi = 0.0;
@@ -403,7 +405,7 @@ void SweptVolume::intervals(int axis, double u, double v, bool general,
     } else if (body.crossing[axis]) {
       hit = crossBodyInterval(body, axis, u, v, iv);
     } else {
-      hit = bodyInterval(body, axis, u, v, iv);
+      hit = bodyInterval(body, axis, u, v, false, iv);
     }
     if (hit && iv.hi > iv.lo) out.push_back(iv);
   }

@@ -99,10 +99,13 @@ class SweptVolume final : public LineSolid {
                       const Translation& tr);
   struct LineFrame;
   void intervals(int axis, double u, double v, bool general, std::vector<Interval>& out) const;
-  bool bodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
+  // `general`: the section solver's candidate enumeration (the reference) instead of
+  // its band form.
+  bool bodyInterval(const SweptBody& body, int axis, double u, double v, bool general,
+                    Interval& out) const;
   bool crossBodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
-  bool pieceExtent(const SweptBody& body, const SweptPiece& p, const LineFrame& f, double& lo,
-                   double& hi) const;
+  bool pieceExtent(const SweptBody& body, const SweptPiece& p, const LineFrame& f, bool general,
+                   double& lo, double& hi) const;
 
   std::vector<Translation> translations_;
   std::vector<SweptBody> bodies_;
