@@ -14,18 +14,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::vector<std::unique_ptr<geom::LineSolid>> fixtureSolids(const protocol::Job& job) {
-  std::vector<std::unique_ptr<geom::LineSolid>> out;
-  for (const protocol::Fixture& f : job.fixtures) {
-    if (f.kind == protocol::Fixture::Kind::kBox) {
-      out.push_back(std::make_unique<geom::BoxSolid>(f.box.lo, f.box.hi));
-    } else {
-      out.push_back(std::make_unique<geom::CylinderSolid>(f.base, f.axis, f.radius, f.height));
-    }
-  }
-  return out;
-}
-
 // Lines of the main program, for the progress fraction (one streaming pass).
 std::int64_t countLines(const LoadedJob& loaded) {
   std::int64_t n = 0;
@@ -42,6 +30,18 @@ std::int64_t countLines(const LoadedJob& loaded) {
 }
 
 }  // namespace
+
+std::vector<std::unique_ptr<geom::LineSolid>> fixtureSolids(const protocol::Job& job) {
+  std::vector<std::unique_ptr<geom::LineSolid>> out;
+  for (const protocol::Fixture& f : job.fixtures) {
+    if (f.kind == protocol::Fixture::Kind::kBox) {
+      out.push_back(std::make_unique<geom::BoxSolid>(f.box.lo, f.box.hi));
+    } else {
+      out.push_back(std::make_unique<geom::CylinderSolid>(f.base, f.axis, f.radius, f.height));
+    }
+  }
+  return out;
+}
 
 check::SimulationOptions simulationOptions(const protocol::JobOptions& o) {
   check::SimulationOptions s;

@@ -22,6 +22,9 @@ struct CheckControls {
   std::function<void(const mdh::Stock&)> finished;
 };
 
+// The job's fixtures as solids for the simulation.
+std::vector<std::unique_ptr<geom::LineSolid>> fixtureSolids(const protocol::Job& job);
+
 // The simulation's options from the job's.
 check::SimulationOptions simulationOptions(const protocol::JobOptions& options);
 

@@ -138,11 +138,19 @@ int simulate(const SimArgs& a, std::ostream& out, std::ostream& err) {
   options.table = map.table;
   options.registers = protocol::registerSpan(map);
   options.coils = map.feed_hold.coil + 1;
+  // The machine at home, tool 0, spindle off, line 0 from the first reply on.
+  std::vector<std::uint16_t> image(static_cast<std::size_t>(options.registers));
+  protocol::ModbusSample home;
+  home.joints = loaded.job.machine->home;
+  home.tool = 0;
+  home.spindle_on = false;
+  home.line = 0;
+  protocol::encodeSample(map, home, image);
+  options.initial = image;
   daemon::ModbusServer server(options);
   out << "listening on " << a.host << ":" << server.port() << std::endl;
 
   const auto started = std::chrono::steady_clock::now();
-  std::vector<std::uint16_t> image(static_cast<std::size_t>(options.registers));
   daemon::PlaybackHooks hooks;
   hooks.publish = [&](const daemon::ControllerState& s) {
     protocol::ModbusSample sample;

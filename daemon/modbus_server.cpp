@@ -65,6 +65,8 @@ ModbusServer::ModbusServer(ModbusServerOptions options) : options_(std::move(opt
     throw ModbusServerError("cannot allocate the Modbus context or register mapping");
   }
   shared_registers_.assign(static_cast<std::size_t>(options_.registers), 0);
+  std::copy_n(options_.initial.begin(), std::min(options_.initial.size(), shared_registers_.size()),
+              shared_registers_.begin());
   shared_coils_.assign(static_cast<std::size_t>(options_.coils), 0);
   thread_ = std::thread([this] { run(); });
 }

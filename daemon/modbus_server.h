@@ -39,6 +39,9 @@ struct ModbusServerOptions {
   int registers = 0;  // registers 0..registers-1 exist; others answer illegal address
   int coils = 1;
   int max_clients = 64;  // more are accepted and closed at once
+  // Register values from the first reply on (the rest zero): a controller never
+  // shows a pose it is not in, not even before its owner's first setRegisters.
+  std::vector<std::uint16_t> initial;
 };
 
 class ModbusServer {

@@ -14,7 +14,7 @@ double clean(double v) {
   return r == 0.0 ? 0.0 : r;
 }
 
-json joints(const gcode::AxisValues& q, const kin::Machine* machine) {
+json jointValues(const gcode::AxisValues& q, const kin::Machine* machine) {
   json out = json::object();
   if (machine != nullptr) {
     for (const kin::Joint& j : machine->joints)
@@ -34,7 +34,7 @@ json collision(const check::Collision& c, const kin::Machine* machine) {
       {"block", c.block},
       {"tool", c.tool},
       {"position", json::array({clean(c.position.x), clean(c.position.y), clean(c.position.z)})},
-      {"joints", joints(c.joints, machine)},
+      {"joints", jointValues(c.joints, machine)},
       {"depth", clean(c.depth)}};
   if (!c.file.empty()) j["file"] = c.file;
   if (c.part != check::ToolPartName::kNone) j["part"] = std::string(check::toolPartName(c.part));
@@ -94,6 +94,14 @@ json mdhBlock(const mdh::Stats& m, double spacing) {
 }
 
 }  // namespace
+
+json collisionToJson(const check::Collision& c, const kin::Machine* machine) {
+  return collision(c, machine);
+}
+
+json jointsToJson(const gcode::AxisValues& q, const kin::Machine* machine) {
+  return jointValues(q, machine);
+}
 
 json reportToJson(const check::Report& r, const kin::Machine* machine) {
   json collisions = json::array();

@@ -12,4 +12,10 @@ namespace mdhd::protocol {
 // always and the others when non-zero.
 nlohmann::json reportToJson(const check::Report& report, const kin::Machine* machine);
 
+// One entry of the report's `collisions` (a live shadow's alarms use it too).
+nlohmann::json collisionToJson(const check::Collision& collision, const kin::Machine* machine);
+
+// Joint values by the machine's joint names (see reportToJson for null).
+nlohmann::json jointsToJson(const gcode::AxisValues& q, const kin::Machine* machine);
+
 }  // namespace mdhd::protocol

@@ -99,6 +99,7 @@ Simulation::Simulation(const Simulation& from, ForkTag)
       options_(from.options_),
       contact_tolerance_(from.contact_tolerance_),
       current_tool_(from.current_tool_),
+      episodes_(from.episodes_),
       started_(Clock::now()) {
   stats_.stock_volume_mm3 = stock_->volume();
 }

@@ -67,9 +67,10 @@ class Simulation final : public gcode::MotionSink {
   void machineMotion(const gcode::Motion& m, double seconds);
 
   // A copy to run ahead of this one (a look-ahead): the same machine, tools, fixtures
-  // and options, a deep copy of the stock as it is now, the current tool, and no
-  // collisions or statistics yet. `kin` and the fixtures are shared read-only, so
-  // the copy may run on another thread while this one goes on.
+  // and options, a deep copy of the stock as it is now, the current tool and the
+  // collision episodes so far (a contact going on is not new to the copy), fresh
+  // statistics. `kin` and the fixtures are shared read-only, so the copy may run on
+  // another thread while this one goes on.
   std::unique_ptr<Simulation> fork() const;
 
   // Called after every motion with its place and the number of motions so far.

@@ -135,6 +135,16 @@ TEST(MachineMotion, RapidIntoStockIsFoundOnAJointMoveWithItsShareOfThePath) {
   EXPECT_EQ(c.line, 7);
   EXPECT_NEAR(c.path_s, 6.0 / 8.0, 0.15 / 8.0);  // contact at the top: 6 of the 8 mm
   EXPECT_NEAR(c.depth, 2.0, 0.2);
+
+  // A fork goes on with the episode: the same rapid on sideways is no new contact.
+  auto ahead = live->fork();
+  ASSERT_EQ(ahead->collisions().size(), 1u);
+  gcode::AxisValues side = below;
+  side[gcode::kX] += 4;
+  ahead->machineMotion(jointMove(like, below, side), 0.01);
+  EXPECT_EQ(ahead->collisions().size(), 1u);
+  EXPECT_EQ(ahead->collisions()[0].last_line, 7);
+  EXPECT_EQ(live->collisions().size(), 1u);
 }
 
 TEST(MachineMotion, ForkRunsAheadOnACopyAndSnapshotMatchesFinish) {

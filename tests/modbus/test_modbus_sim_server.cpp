@@ -83,6 +83,25 @@ int connectRaw(int port) {
   return fd;
 }
 
+TEST(ModbusServer, AnswersWithTheInitialRegistersBeforeAnyPublish) {
+  const ModbusMap probe = mapOn(0);
+  ModbusSample home;
+  home.joints[gcode::kZ] = 300;
+  home.tool = 0;
+  home.spindle_on = false;
+  home.line = 0;
+  ModbusServerOptions o;
+  o.registers = protocol::registerSpan(probe);
+  o.initial.resize(static_cast<std::size_t>(o.registers));
+  protocol::encodeSample(probe, home, o.initial);
+  ModbusServer server(o);
+  ModbusTcpClient client(mapOn(server.port()));
+  const ModbusSample s = client.read();
+  EXPECT_EQ(s.joints[gcode::kZ], 300.0);  // never the all-zero pose
+  EXPECT_EQ(s.joints[gcode::kX], 0.0);
+  EXPECT_EQ(*s.line, 0);
+}
+
 TEST(ModbusSimServer, ServesTheMapAndSurvivesBadClients) {
   ModbusMap map = mapOn(0);
   auto server = serverFor(map);

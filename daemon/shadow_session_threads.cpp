@@ -1,0 +1,247 @@
+// The three threads of a shadow: polling (keeps its rhythm, never blocks on the
+// carving), carving (cuts what was polled, raises alarms) and the look-ahead.
+#include <algorithm>
+#include <thread>
+
+#include "daemon/shadow_session.h"
+
+namespace mdhd::shadow {
+namespace {
+
+using Seconds = std::chrono::duration<double>;
+
+// Sleeps until `t` in short slices, returning early when `stop` is raised.
+void sleepUntil(SteadyClock::time_point t, const std::atomic<bool>& stop) {
+  constexpr auto kSlice = std::chrono::milliseconds(50);
+  while (!stop.load()) {
+    const auto now = SteadyClock::now();
+    if (now >= t) return;
+    std::this_thread::sleep_until(std::min(t, now + kSlice));
+  }
+}
+
+}  // namespace
+
+void ShadowSession::pollLoop() {
+  std::unique_ptr<protocol::RegisterSource> source = source_factory_(spec_.map);
+  const auto period =
+      std::chrono::duration_cast<SteadyClock::duration>(Seconds(1.0 / spec_.map.poll_hz));
+  const auto bridge =
+      std::max(std::chrono::duration_cast<SteadyClock::duration>(Seconds(options_.bridge_seconds)),
+               3 * period);
+  std::optional<SteadyClock::time_point> last_good;
+  bool failing = false;
+  SteadyClock::time_point next_pose{};
+  const auto pose_every = std::chrono::duration_cast<SteadyClock::duration>(
+      Seconds(1.0 / std::max(options_.pose_hz, 0.01)));
+  auto next = SteadyClock::now();
+  while (!stopping_.load()) {
+    if (hold_pending_.exchange(false)) {
+      try {
+        source->writeFeedHold(true);
+        std::lock_guard lock(mutex_);
+        ++counters_.feed_hold_writes;
+      } catch (const protocol::ModbusError&) {
+        hold_pending_ = true;  // again before the next poll
+      }
+    }
+    try {
+      const protocol::ModbusSample r = source->read();
+      PollSample s{SteadyClock::now(), r.joints, r.tool, r.spindle_on, r.line, false};
+      s.resync = !last_good || (failing && s.t - *last_good > bridge);
+      failing = false;
+      last_good = s.t;
+      onGoodPoll(s);
+      if (s.t >= next_pose) {
+        next_pose = s.t + pose_every;
+        int tool = 0;
+        {
+          std::lock_guard lock(mutex_);
+          tool = s.tool.value_or(tool_hint_);
+        }
+        nlohmann::json pose = poseJson(s, tool);
+        pose["samples"] = counters().polls_ok;
+        events_.publish("pose", pose);
+      }
+    } catch (const protocol::ModbusError& e) {
+      failing = true;
+      onBadPoll(e, protocol::modbusErrorKindName(e.kind()));
+    } catch (const protocol::RegisterValueError& e) {
+      failing = true;
+      onBadPoll(e, "bad_value");
+    }
+    next += period;
+    const auto now = SteadyClock::now();
+    if (next < now - period) next = now;  // fell behind (a stall): no burst to catch up
+    sleepUntil(next, stopping_);
+  }
+}
+
+void ShadowSession::onGoodPoll(PollSample& s) {
+  {
+    std::lock_guard lock(mutex_);
+    queue_.push_back(s);
+    ++polled_;
+    ++counters_.polls_ok;
+    counters_.backlog = queue_.size();
+    counters_.max_backlog = std::max<std::uint64_t>(counters_.max_backlog, queue_.size());
+    latest_ = s;
+  }
+  wake_.notify_all();
+  if (state_.load() != ShadowState::kLive) setState(ShadowState::kLive, "");
+}
+
+void ShadowSession::onBadPoll(const std::exception& e, const char* kind) {
+  const std::string reason = std::string(kind) + ": " + e.what();
+  {
+    std::lock_guard lock(mutex_);
+    ++counters_.polls_failed;
+    last_error_ = reason;
+  }
+  // Before the first answer the shadow is still connecting; after it, stale.
+  if (state_.load() == ShadowState::kLive) setState(ShadowState::kStale, reason);
+}
+
+std::vector<PollSample> ShadowSession::thin(std::vector<PollSample> batch) {
+  // Keeps every other sample, and every sample where the line, tool or spindle
+  // changes or a resync starts, so no kind of move is merged into another.
+  std::vector<PollSample> out;
+  out.reserve(batch.size() / 2 + 2);
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    const PollSample& s = batch[i];
+    const bool change = i == 0 || i + 1 == batch.size() || s.resync ||
+                        s.line != batch[i - 1].line || s.tool != batch[i - 1].tool ||
+                        s.spindle_on != batch[i - 1].spindle_on || batch[i + 1].resync ||
+                        s.line != batch[i + 1].line;
+    if (change || i % 2 == 0) out.push_back(s);
+  }
+  return out;
+}
+
+void ShadowSession::carveLoop() {
+  for (;;) {
+    std::vector<PollSample> batch;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stopping_.load() || !queue_.empty(); });
+      if (stopping_.load()) return;
+      batch.swap(queue_);
+      counters_.backlog = 0;
+    }
+    const std::size_t polled = batch.size();
+    if (batch.size() > options_.max_backlog) {
+      batch = thin(std::move(batch));
+      std::lock_guard lock(mutex_);
+      counters_.thinned += polled - batch.size();
+    }
+    CarveResult r;
+    std::optional<std::size_t> cursor;
+    std::vector<std::pair<double, int>> depths;  // of every episode so far
+    {
+      std::lock_guard lock(sim_mutex_);
+      r = carver_->carve(batch);
+      cursor = carver_->cursor();
+      for (const check::Collision& c : carver_->simulation().collisions())
+        depths.emplace_back(c.depth, c.last_line);
+    }
+    const std::size_t first_new = depths.size() - r.alarms.size();
+    {
+      std::lock_guard lock(mutex_);
+      counters_.motions += static_cast<std::uint64_t>(r.motions);
+      counters_.merged += static_cast<std::uint64_t>(r.merged);
+      counters_.motion_errors += r.errors.size();
+      if (!r.errors.empty()) last_error_ = "motion: " + r.errors.back();
+      counters_.carve_lag_ms =
+          std::chrono::duration<double, std::milli>(SteadyClock::now() - batch.back().t).count();
+      cursor_ = cursor;
+      if (cursor && track_) tool_hint_ = track_->at(*cursor).motion.tool;
+      for (Alarm& a : alarms_) {
+        if (a.predicted || a.episode >= depths.size()) continue;
+        a.collision.depth = depths[a.episode].first;
+        a.collision.last_line = depths[a.episode].second;
+      }
+    }
+    for (std::size_t i = 0; i < r.alarms.size(); ++i)
+      raise({false, r.alarms[i], 0.0, first_new + i});
+    maybeLookAhead();
+    {
+      std::lock_guard lock(mutex_);
+      carved_ += polled;
+    }
+    settled_.notify_all();
+  }
+}
+
+void ShadowSession::maybeLookAhead() {
+  if (!track_ || !options_.lookahead) return;
+  std::size_t index = 0;
+  {
+    std::lock_guard lock(mutex_);
+    // One at a time, and once per program motion the machine enters.
+    if (ahead_busy_ || !cursor_ || ahead_done_for_ == cursor_) return;
+    index = *cursor_;
+    ahead_busy_ = true;
+    ahead_done_for_ = cursor_;
+  }
+  std::unique_ptr<check::Simulation> fork;
+  gcode::AxisValues joints{};
+  {
+    std::lock_guard lock(sim_mutex_);
+    fork = carver_->simulation().fork();
+    joints = carver_->last()->joints;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    ahead_task_ = std::move(fork);
+    ahead_index_ = index;
+    ahead_joints_ = joints;
+  }
+  wake_.notify_all();
+}
+
+void ShadowSession::aheadLoop() {
+  for (;;) {
+    std::unique_ptr<check::Simulation> sim;
+    std::size_t index = 0;
+    gcode::AxisValues joints{};
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stopping_.load() || ahead_task_ != nullptr; });
+      if (stopping_.load()) return;
+      sim = std::move(ahead_task_);
+      index = ahead_index_;
+      joints = ahead_joints_;
+    }
+    sim->setCancelFlag(&stopping_);
+    const auto found = [&](const PredictedContact& p) {
+      const check::Collision& c = p.collision;
+      {
+        std::lock_guard lock(mutex_);
+        // Once per contact and motion; not when the machine is past it or the
+        // live carving already raised it.
+        const auto key = std::make_tuple(static_cast<int>(c.type), static_cast<int>(c.part),
+                                         c.fixture, p.motion);
+        if (predicted_keys_.count(key) != 0 || (cursor_ && *cursor_ > p.motion)) return;
+        const bool seen = std::any_of(alarms_.begin(), alarms_.end(), [&](const Alarm& a) {
+          return !a.predicted && a.collision.type == c.type && a.collision.line == c.line;
+        });
+        if (seen) return;
+        predicted_keys_.insert(key);
+      }
+      raise({true, c, p.seconds, 0});
+    };
+    try {
+      lookAhead(*sim, *track_, *kin_, index, joints, options_.span, found);
+    } catch (const check::Cancelled&) {
+      return;
+    }
+    {
+      std::lock_guard lock(mutex_);
+      ahead_busy_ = false;
+      ++counters_.lookaheads;
+    }
+    settled_.notify_all();
+  }
+}
+
+}  // namespace mdhd::shadow

@@ -1,0 +1,45 @@
+#pragma once
+// A 3-axis cell for the shadow tests: 40 x 40 x 20 stock at density 5, one flat
+// end mill (cutter 10 mm, shank to 30, a 20 mm holder above), G43: Z joint = tip + 40.
+#include <chrono>
+#include <optional>
+#include <string>
+
+#include "daemon/shadow_carver.h"
+#include "sim/kinematics/presets.h"
+
+namespace mdhd::shadow::testing {
+
+inline protocol::Job cellJob(std::optional<std::string> program = std::nullopt) {
+  protocol::Job job;
+  job.machine = kin::presets::threeAxisMill();
+  geom::Tool t;
+  t.number = 1;
+  t.shape = geom::ToolShape::kFlat;
+  t.diameter = 6;
+  t.shank_diameter = 6;
+  t.flute_length = 10;
+  t.length = 40;
+  t.holder = {{20, 10}};
+  job.tools.push_back(t);
+  job.stock = {{0, 0, -20}, {40, 40, 0}};
+  job.options.density = 5;
+  job.program = std::move(program);
+  return job;
+}
+
+// A sample at tip (x, y, z) of the cell's tool, `ms` milliseconds after t0.
+inline PollSample at(double x, double y, double z, int ms, std::optional<std::int64_t> line = {},
+                     std::optional<bool> spindle = true) {
+  PollSample s;
+  s.t = SteadyClock::time_point{} + std::chrono::milliseconds(ms);
+  s.joints[gcode::kX] = x;
+  s.joints[gcode::kY] = y;
+  s.joints[gcode::kZ] = z + 40.0;
+  s.tool = 1;
+  s.spindle_on = spindle;
+  s.line = line;
+  return s;
+}
+
+}  // namespace mdhd::shadow::testing

@@ -1,0 +1,109 @@
+// ShadowCarver: polled samples as straight joint-space motions, cut and checked
+// by the engine; straight runs merged, standing still and resyncs cut nothing,
+// the kind of move taken from the program at the reported line.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "tests/shadow/shadow_fixture.h"
+
+namespace mdhd::shadow {
+namespace {
+
+using testing::at;
+using testing::cellJob;
+
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(ShadowCarver, SamplesOnAStraightLineAreOneMotionAndCutTheSlot) {
+  const protocol::Job job = cellJob();
+  const kin::Kinematics kin(*job.machine);
+  ShadowCarver carver(job, kin, nullptr);
+  const double full = carver.simulation().stock().volume();
+  std::vector<PollSample> batch{at(10, 10, 5, 0), at(10, 10, -2, 10)};             // plunge
+  for (int i = 1; i <= 20; ++i) batch.push_back(at(10 + i, 10, -2, 10 + 10 * i));  // slot along x
+  const CarveResult r = carver.carve(batch);
+  EXPECT_EQ(r.motions, 2);  // the plunge, then the slot as one motion
+  EXPECT_EQ(r.merged, 19);
+  EXPECT_TRUE(r.alarms.empty());
+  EXPECT_TRUE(r.errors.empty());
+  const double removed = full - carver.simulation().stock().volume();
+  const double expected = 2 * (kPi * 9 + 20 * 6);  // 2 mm deep: hole and slot
+  EXPECT_NEAR(removed, expected, 0.03 * expected);
+  // The cycle time is the machine's: 210 ms of polls.
+  EXPECT_NEAR(carver.simulation().snapshot(0).stats.cycle_time_s, 0.21, 1e-9);
+}
+
+TEST(ShadowCarver, StandingStillAndResyncCutNothing) {
+  const protocol::Job job = cellJob();
+  const kin::Kinematics kin(*job.machine);
+  ShadowCarver carver(job, kin, nullptr);
+  const double full = carver.simulation().stock().volume();
+  CarveResult r =
+      carver.carve(std::vector<PollSample>{at(10, 10, 5, 0), at(10, 10, 5, 1), at(10, 10, 5, 2)});
+  EXPECT_EQ(r.motions, 0);
+  // After a resync the machine is somewhere else: no motion is invented into it.
+  PollSample jump = at(30, 30, -3, 500);
+  jump.resync = true;
+  r = carver.carve(std::vector<PollSample>{jump});
+  EXPECT_EQ(r.motions, 0);
+  EXPECT_DOUBLE_EQ(carver.simulation().stock().volume(), full);
+  // From there on it cuts again: up and out of the stock through uncut material.
+  r = carver.carve(std::vector<PollSample>{at(30, 30, 5, 520)});
+  EXPECT_EQ(r.motions, 1);
+  EXPECT_NEAR(full - carver.simulation().stock().volume(), kPi * 9 * 3, 0.03 * kPi * 27);
+}
+
+TEST(ShadowCarver, ACornerIsTwoMotionsAndSeparateBatchesAreNotMerged) {
+  const protocol::Job job = cellJob();
+  const kin::Kinematics kin(*job.machine);
+  ShadowCarver carver(job, kin, nullptr);
+  CarveResult r = carver.carve(std::vector<PollSample>{at(5, 5, -1, 0), at(10, 5, -1, 10),
+                                                       at(15, 5, -1, 20), at(15, 10, -1, 30)});
+  EXPECT_EQ(r.motions, 2);
+  EXPECT_EQ(r.merged, 1);
+  r = carver.carve(std::vector<PollSample>{at(15, 15, -1, 40)});
+  EXPECT_EQ(r.motions, 1);
+  EXPECT_EQ(r.merged, 0);
+}
+
+TEST(ShadowCarver, WithoutTheProgramEveryMoveIsAFeedAndSpindleOffIsAnAlarm) {
+  const protocol::Job job = cellJob();
+  const kin::Kinematics kin(*job.machine);
+  ShadowCarver carver(job, kin, nullptr);
+  CarveResult r = carver.carve(
+      std::vector<PollSample>{at(10, 10, 5, 0, 6), at(10, 10, -1, 5, 7), at(10, 10, 5, 8, 7)});
+  EXPECT_TRUE(r.alarms.empty());  // fast, but nothing says it is a rapid
+  r = carver.carve(
+      std::vector<PollSample>{at(20, 20, 5, 10, 8, false), at(20, 20, -1, 20, 9, false)});
+  ASSERT_EQ(r.alarms.size(), 1u);
+  EXPECT_EQ(r.alarms[0].type, check::CollisionType::kSpindleOffCut);
+  EXPECT_EQ(r.alarms[0].line, 9);
+  EXPECT_NEAR(r.alarms[0].depth, 1.0, 0.2);
+  EXPECT_NEAR(r.alarms[0].position.z, 0.0, 0.15);
+}
+
+TEST(ShadowCarver, TheProgramSaysWhichMovesAreRapids) {
+  const protocol::Job job = cellJob(
+      "G21 G90 G17\nT1 M6\nG43 H1\nM3 S9000\n"  // 1-4
+      "G0 X10 Y10 Z5\n"                         // 5
+      "G0 Z-1\n"                                // 6: a rapid into the stock
+      "G1 Z-2 F300\n"                           // 7
+      "G0 Z5\nM5\nM30\n");
+  const kin::Kinematics kin(*job.machine);
+  const ProgramTrack track(job, kin);
+  ShadowCarver carver(job, kin, &track);
+  const CarveResult r = carver.carve(
+      std::vector<PollSample>{at(10, 10, 5, 0, 5), at(10, 10, 2, 2, 6), at(10, 10, -1, 4, 6),
+                              at(10, 10, -2, 200, 7), at(10, 10, 5, 210, 8)});
+  ASSERT_EQ(r.alarms.size(), 1u);
+  EXPECT_EQ(r.alarms[0].type, check::CollisionType::kRapidIntoStock);
+  EXPECT_EQ(r.alarms[0].line, 6);
+  EXPECT_EQ(r.alarms[0].block, "G0 Z-1");
+  EXPECT_NEAR(r.alarms[0].depth, 1.0, 0.2);
+  ASSERT_TRUE(carver.cursor());
+  EXPECT_EQ(track.at(*carver.cursor()).motion.pos.line, 8);
+}
+
+}  // namespace
+}  // namespace mdhd::shadow
