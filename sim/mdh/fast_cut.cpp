@@ -1,7 +1,9 @@
 #include "sim/mdh/fast_cut.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "sim/mdh/line_segments.h"
@@ -42,29 +44,43 @@ bool cutColumn(const ThreeMap& m, double h, std::span<const Span> tool, std::vec
   return true;
 }
 
+// Per-thread buffers, so a step allocates nothing once they have grown.
+struct Scratch {
+  std::vector<ColumnChange> changes;
+  std::vector<int> byRow;     // change indices grouped by row (counting sort)
+  std::vector<int> rowStart;  // rowCount + 1 offsets into byRow
+  std::vector<int> next;
+  std::vector<Span> before, after, pieces;
+  std::vector<double> heights, row, oldCrossings;
+  std::vector<std::uint8_t> changed;
+};
+
 // Rebuilds one row of embedded heights; `heights` are the row's new parent
 // heights, `changed` marks the columns that moved. Edges in [e0, e1) lie in
 // the tool's box: their crossings can move even when neither column changes.
-void rebuildRow(ThreeMap& m, int family, int r, const std::vector<double>& heights,
-                const std::vector<std::uint8_t>& changed, int e0, int e1,
-                const IntervalCache& cache, std::vector<Span>& pieces) {
+// Adds the change of the row's edge terms of the volume to `delta`.
+void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCache& cache,
+                Scratch& s, double& delta) {
   const int a = m.axis();
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
-  const std::vector<double>& src = m.row(family, r);
-  std::vector<double> dst;
-  dst.reserve(src.size() + 16);
+  std::vector<double>& src = m.row(family, r);
+  std::vector<double>& dst = s.row;
+  dst.clear();
+  const double weight = 0.5 * m.squaresAtEdge(family, r);
   std::size_t pos = 0;
   std::array<int, 3> p{};
   p[y] = box.lo[y] + r;
   for (int e = 0; e < m.edgesInRow(family); ++e) {
     const double oh0 = m.rowHeight(family, r, e), oh1 = m.rowHeight(family, r, e + 1);
-    const double nh0 = heights[e], nh1 = heights[e + 1];
+    const double nh0 = s.heights[e], nh1 = s.heights[e + 1];
     int ofirst = 0, ocount = 0, nfirst = 0, ncount = 0;
     m.straddle(oh0, oh1, ofirst, ocount);
     m.straddle(nh0, nh1, nfirst, ncount);
-    const bool touched = changed[e] || changed[e + 1];
+    const bool touched = s.changed[e] || s.changed[e + 1];
     const bool reached = touched || (e >= e0 && e < e1);
+    const std::size_t start = dst.size();
+    bool moved = touched;
     for (int i = 0; i < ncount; ++i) {
       const int k = nfirst + i;
       const bool hadOne = k >= ofirst && k < ofirst + ocount;
@@ -73,24 +89,35 @@ void rebuildRow(ThreeMap& m, int family, int r, const std::vector<double>& heigh
         p[a] = k;
         const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
         value = edgeCrossingAfterCut(m.solidAt(oh0, k), m.solidAt(oh1, k), value, m.solidAt(nh0, k),
-                                     m.solidAt(nh1, k), box.lo[x] + e, tool, pieces);
+                                     m.solidAt(nh1, k), box.lo[x] + e, tool, s.pieces);
+        // Untouched edges keep their layout: compare with the old crossing.
+        moved = moved || !(value == src[pos + i]);
       }
       dst.push_back(value);
     }
+    if (moved && weight > 0.0)
+      delta += weight * (m.edgeIntegral(nh0, nh1, box.lo[x] + e, dst.data() + start) -
+                         m.edgeIntegral(oh0, oh1, box.lo[x] + e, src.data() + pos));
     pos += ocount;
   }
-  dst.shrink_to_fit();
-  m.row(family, r) = std::move(dst);
+  // Reuse the row's storage unless it is too small or far too large (memory is
+  // counted by capacity).
+  if (dst.size() > src.capacity() || src.capacity() > dst.size() + dst.size() / 4 + 4)
+    src = std::vector<double>(dst.begin(), dst.end());
+  else
+    src.assign(dst.begin(), dst.end());
 }
 
 // A row without changed columns keeps its layout: only the crossings on
-// edges [e0, e1) the tool's lines reach move, in place. True if one moved.
+// edges [e0, e1) the tool's lines reach move, in place. True if one moved;
+// the change of the row's edge terms of the volume is added to `delta`.
 bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCache& cache,
-                      std::vector<Span>& pieces) {
+                      Scratch& s, double& delta) {
   const int a = m.axis();
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
   std::vector<double>& row = m.row(family, r);
+  const double weight = 0.5 * m.squaresAtEdge(family, r);
   std::array<int, 3> p{};
   p[y] = box.lo[y] + r;
   bool moved = false;
@@ -99,34 +126,58 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
     const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
     int first = 0, count = 0;
     m.straddle(h0, h1, first, count);
-    for (int i = 0; e >= e0 && i < count; ++i) {
-      const int k = first + i;
-      p[a] = k;
+    if (e < e0 || count == 0) {
+      pos += count;
+      continue;
+    }
+    double* c = row.data() + pos;
+    s.oldCrossings.assign(c, c + count);
+    bool edgeMoved = false;
+    const bool s0 = m.solidAt(h0, first), s1 = m.solidAt(h1, first);  // alike on every level
+    for (int i = 0; i < count; ++i) {
+      p[a] = first + i;
       const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
       if (tool.empty()) continue;
-      const bool s0 = m.solidAt(h0, k), s1 = m.solidAt(h1, k);
-      double& c = row[pos + i];
-      const double value = edgeCrossingAfterCut(s0, s1, c, s0, s1, box.lo[x] + e, tool, pieces);
-      if (!(value == c)) {
-        c = value;
-        moved = true;
+      const double value =
+          edgeCrossingAfterCut(s0, s1, c[i], s0, s1, box.lo[x] + e, tool, s.pieces);
+      if (!(value == c[i])) {
+        c[i] = value;
+        edgeMoved = true;
       }
     }
+    if (edgeMoved && weight > 0.0)
+      delta += weight * (m.edgeIntegral(h0, h1, box.lo[x] + e, c) -
+                         m.edgeIntegral(h0, h1, box.lo[x] + e, s.oldCrossings.data()));
+    moved = moved || edgeMoved;
     pos += count;
   }
   return moved;
 }
 
+// Groups the changes by row of `family` (rows along u are indexed by iv).
+void groupByRow(const ThreeMap& m, int family, Scratch& s) {
+  const int rows = m.rowCount(family);
+  s.rowStart.assign(rows + 1, 0);
+  for (const ColumnChange& c : s.changes) ++s.rowStart[(family == 0 ? c.iv : c.iu) + 1];
+  for (int r = 0; r < rows; ++r) s.rowStart[r + 1] += s.rowStart[r];
+  s.byRow.resize(s.changes.size());
+  s.next.assign(s.rowStart.begin(), s.rowStart.end() - 1);
+  for (std::size_t i = 0; i < s.changes.size(); ++i) {
+    const ColumnChange& c = s.changes[i];
+    s.byRow[s.next[family == 0 ? c.iv : c.iu]++] = static_cast<int>(i);
+  }
+}
+
 }  // namespace
 
 FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) {
+  thread_local Scratch s;
   volumeDelta = 0.0;
   const GridBox region = map.box().intersect(cache.touched());
   if (region.empty()) return FastCut::kUnchanged;
   const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
   const GridBox& box = map.box();
-  std::vector<ColumnChange> changes;
-  std::vector<Span> before, after;
+  s.changes.clear();
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
     for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
       const auto tool = cache.line(a, cu, cv);
@@ -134,52 +185,56 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
       const double h = map.height(iu, iv);
       double nh = 0.0;
-      if (!cutColumn(map, h, tool, before, after, nh)) return FastCut::kOverhang;
-      if (!(nh == h)) changes.push_back({iu, iv, nh});
+      if (!cutColumn(map, h, tool, s.before, s.after, nh)) return FastCut::kOverhang;
+      if (!(nh == h)) s.changes.push_back({iu, iv, nh});
     }
-  if (changes.empty() && !map.threeWay()) return FastCut::kUnchanged;
-  // The squares around the tool's columns are all the volume that moves: the
-  // changed columns' and those of embedded crossings the tool moves alone.
-  const int u0 = std::max(0, region.lo[u] - box.lo[u] - 1);
-  const int v0 = std::max(0, region.lo[v] - box.lo[v] - 1);
-  const int u1 = std::min(map.columnsU() - 1, region.hi[u] - box.lo[u] + 1);
-  const int v1 = std::min(map.columnsV() - 1, region.hi[v] - box.lo[v] + 1);
-  const double volumeBefore = map.squaresVolume(u0, u1, v0, v1);
-  bool moved = !changes.empty();
+  if (s.changes.empty() && !map.threeWay()) return FastCut::kUnchanged;
+  // volume() is a sum of edge terms (1/2 per square holding the edge) minus
+  // column terms (1/4 per square holding the column): the change is that of
+  // the terms of the edges and columns that moved.
+  double delta = 0.0;
+  for (const ColumnChange& c : s.changes)
+    delta -= 0.25 * map.squaresAtColumn(c.iu, c.iv) *
+             (map.columnLength(c.height) - map.columnLength(map.height(c.iu, c.iv)));
+  bool moved = !s.changes.empty();
   if (map.threeWay()) {
-    std::vector<Span> pieces;
-    std::vector<double> heights;
-    std::vector<std::uint8_t> changed;
     for (int family = 0; family < 2; ++family) {
       const int x = family == 0 ? u : v, y = family == 0 ? v : u;
       const int e0 = region.lo[x] - box.lo[x], e1 = region.hi[x] - box.lo[x];
-      std::vector<std::vector<int>> byRow(map.rowCount(family));
-      for (std::size_t i = 0; i < changes.size(); ++i)
-        byRow[family == 0 ? changes[i].iv : changes[i].iu].push_back(static_cast<int>(i));
+      groupByRow(map, family, s);
       for (int r = 0; r < map.rowCount(family); ++r) {
-        if (byRow[r].empty()) {
+        const int begin = s.rowStart[r], end = s.rowStart[r + 1];
+        if (begin == end) {
           const int ry = box.lo[y] + r;
           if (ry >= region.lo[y] && ry <= region.hi[y])
-            moved |= moveRowCrossings(map, family, r, e0, e1, cache, pieces);
+            moved |= moveRowCrossings(map, family, r, e0, e1, cache, s, volumeDelta);
           continue;
         }
         const int n = map.edgesInRow(family) + 1;
-        heights.resize(n);
-        changed.assign(n, 0);
-        for (int e = 0; e < n; ++e) heights[e] = map.rowHeight(family, r, e);
-        for (int i : byRow[r]) {
-          const ColumnChange& c = changes[i];
+        s.heights.resize(n);
+        s.changed.assign(n, 0);
+        for (int e = 0; e < n; ++e) s.heights[e] = map.rowHeight(family, r, e);
+        for (int i = begin; i < end; ++i) {
+          const ColumnChange& c = s.changes[s.byRow[i]];
           const int e = family == 0 ? c.iu : c.iv;
-          heights[e] = c.height;
-          changed[e] = 1;
+          s.heights[e] = c.height;
+          s.changed[e] = 1;
         }
-        rebuildRow(map, family, r, heights, changed, e0, e1, cache, pieces);
+        rebuildRow(map, family, r, e0, e1, cache, s, volumeDelta);
       }
     }
+  } else {
+    // A plain heightmap's edge terms are the means of their columns' terms.
+    for (const ColumnChange& c : s.changes)
+      delta += 0.5 * map.squaresAtColumn(c.iu, c.iv) *
+               (map.columnLength(c.height) - map.columnLength(map.height(c.iu, c.iv)));
   }
-  if (!moved) return FastCut::kUnchanged;
-  for (const ColumnChange& c : changes) map.setHeight(c.iu, c.iv, c.height);
-  volumeDelta = map.squaresVolume(u0, u1, v0, v1) - volumeBefore;
+  if (!moved) {
+    volumeDelta = 0.0;
+    return FastCut::kUnchanged;
+  }
+  for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
+  volumeDelta += delta;
   return FastCut::kDone;
 }
 

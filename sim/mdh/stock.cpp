@@ -1,16 +1,17 @@
 #include "sim/mdh/stock.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "sim/mdh/cut_cell.h"
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/rng.h"
+#include "sim/mdh/worker_pool.h"
 
 namespace mdhd::mdh {
 
@@ -98,37 +99,26 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
     for (int y = first[1]; y <= last[1]; ++y)
       for (int x = first[0]; x <= last[0]; ++x) items.push_back(brickIndex({x, y, z}));
   std::vector<CutCounters> counters(items.size());
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::atomic<bool> failed{false};
-  auto work = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < items.size();) {
-      if (failed.load()) return;
-      try {
-        const CutContext ctx{cache,
-                             options_.ruleset,
-                             options_.three_way,
-                             tool_direction,
-                             toolRadius_ / grid_.h,
-                             options_.seed,
-                             step_,
-                             counters[i]};
-        cutCell(roots_[items[i]], ctx);
-      } catch (...) {
-        if (!failed.exchange(true)) error = std::current_exception();
-        return;
-      }
-    }
+  const std::function<void(std::size_t)> work = [&](std::size_t i) {
+    const CutContext ctx{cache,
+                         options_.ruleset,
+                         options_.three_way,
+                         tool_direction,
+                         toolRadius_ / grid_.h,
+                         options_.seed,
+                         step_,
+                         counters[i]};
+    cutCell(roots_[items[i]], ctx);
   };
-  // Starting a thread costs tens of microseconds: small steps stay on this one.
+  // Waking a helper costs microseconds: small steps stay on this thread.
   constexpr std::int64_t kParallelPoints = 32768;
   const int workers = t.pointCount() < kParallelPoints ? 1 : threads_;
-  const int helpers = std::min<int>(workers, static_cast<int>(items.size())) - 1;
-  std::vector<std::thread> pool;
-  for (int i = 0; i < helpers; ++i) pool.emplace_back(work);
-  work();
-  for (auto& th : pool) th.join();
-  if (error) std::rethrow_exception(error);
+  if (workers > 1 && items.size() > 1) {
+    if (!pool_) pool_ = std::make_unique<WorkerPool>(threads_);
+    pool_->run(items.size(), workers, work);
+  } else {
+    for (std::size_t i = 0; i < items.size(); ++i) work(i);
+  }
   CutCounters step;
   for (const CutCounters& c : counters) step.add(c);  // fixed order: identical sums
   totals_.add(step);

@@ -17,6 +17,7 @@
 #include "sim/mdh/line_segments.h"
 #include "sim/mdh/split_rules.h"
 #include "sim/mdh/stats.h"
+#include "sim/mdh/worker_pool.h"
 
 namespace mdhd::mdh {
 
@@ -111,6 +112,7 @@ class Stock {
   std::vector<Cell> roots_;
   CutCounters totals_;
   std::unique_ptr<LineStore> lines_ = std::make_unique<LineStore>();  // reused by every cut
+  std::unique_ptr<WorkerPool> pool_;  // made on the first cut that uses two threads or more
   std::uint64_t step_ = 0;
   double toolRadius_ = 0.0;
   int threads_ = 1;

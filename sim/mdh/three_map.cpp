@@ -41,71 +41,82 @@ double ThreeMap::interpolatedCrossing(double h0, double h1, int edgeStart, int l
 
 namespace {
 
+using Point = std::pair<double, double>;  // (position along the edge, solid length)
+
 // Integral over one edge of the solid length, through (0, len0), the
 // embedded crossings and (1, len1).
-double edgeIntegral(double len0, double len1, const std::vector<std::pair<double, double>>& pts) {
-  if (pts.empty()) return 0.5 * (len0 + len1);
+double polylineIntegral(double len0, double len1, const Point* pts, std::size_t n) {
   double x = 0.0, f = len0, sum = 0.0;
-  for (const auto& [px, pf] : pts) {
-    sum += 0.5 * (f + pf) * (px - x);
-    x = px;
-    f = pf;
+  for (std::size_t i = 0; i < n; ++i) {
+    sum += 0.5 * (f + pts[i].second) * (pts[i].first - x);
+    x = pts[i].first;
+    f = pts[i].second;
   }
   return sum + 0.5 * (f + len1) * (1.0 - x);
 }
 
 }  // namespace
 
-double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
-  if (iu1 <= iu0 || iv1 <= iv0) return 0.0;
+// f0, f1: the two columns' solid counts; len0, len1: their solid lengths.
+double ThreeMap::profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
+                                 const double* crossings) const {
+  const int count = std::abs(f0 - f1);
+  if (!threeWay_ || count == 0) return 0.5 * (len0 + len1);
   const int a = dir_.axis;
   const double lo = box_.lo[a], hi = box_.hi[a];
-  auto levelLength = [&](int k) { return dir_.sign > 0 ? k - lo : hi - k; };
-  std::vector<std::pair<double, double>> pts;
+  const int first =
+      dir_.sign > 0 ? box_.lo[a] + std::min(f0, f1) : box_.hi[a] - std::max(f0, f1) + 1;
+  if (count == 1) {
+    const Point p{std::clamp(crossings[0] - edgeStart, 0.0, 1.0),
+                  dir_.sign > 0 ? first - lo : hi - first};
+    return polylineIntegral(len0, len1, &p, 1);
+  }
+  thread_local std::vector<Point> pts;
+  pts.resize(count);
+  for (int i = 0; i < count; ++i)
+    pts[i] = {std::clamp(crossings[i] - edgeStart, 0.0, 1.0),
+              dir_.sign > 0 ? first + i - lo : hi - (first + i)};
+  // Crossings at the same spot form a vertical step: walk it from the first
+  // column's height towards the second's.
+  auto before = [&](const Point& x, const Point& y) {
+    if (x.first != y.first) return x.first < y.first;
+    return len0 > len1 ? x.second > y.second : x.second < y.second;
+  };
+  if (!std::is_sorted(pts.begin(), pts.end(), before)) std::sort(pts.begin(), pts.end(), before);
+  return polylineIntegral(len0, len1, pts.data(), pts.size());
+}
+
+double ThreeMap::edgeIntegral(double h0, double h1, int edgeStart, const double* crossings) const {
+  return profileIntegral(solidCount(h0), solidCount(h1), columnLength(h0), columnLength(h1),
+                         edgeStart, crossings);
+}
+
+double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
+  if (iu1 <= iu0 || iv1 <= iv0) return 0.0;
   // Edge integrals of one row, edges [e0, e1). Solid counts are computed
   // once per column; the walk up to e0 only sums how many crossings to skip.
-  std::vector<int> counts;
-  auto rowIntegrals = [&](int family, int r, int e0, int e1, std::vector<double>& out) {
-    out.resize(e1 - e0);
+  thread_local std::vector<int> counts;
+  auto rowSum = [&](int family, int r, int e0, int e1) {
     counts.resize(e1 + 1);
     for (int e = 0; e <= e1; ++e) counts[e] = solidCount(rowHeight(family, r, e));
     std::size_t pos = 0;
     for (int e = 0; e < e0; ++e) pos += std::abs(counts[e] - counts[e + 1]);
     const int base = box_.lo[family == 0 ? uAxis() : vAxis()];
+    const double* row = threeWay_ ? rows_[family][r].data() : nullptr;
+    double sum = 0.0;
     for (int e = e0; e < e1; ++e) {
-      const double h0 = rowHeight(family, r, e), h1 = rowHeight(family, r, e + 1);
-      const int f0 = counts[e], f1 = counts[e + 1];
-      const int count = std::abs(f0 - f1);
-      const int first =
-          dir_.sign > 0 ? box_.lo[a] + std::min(f0, f1) : box_.hi[a] - std::max(f0, f1) + 1;
-      const double len0 = columnLength(h0), len1 = columnLength(h1);
-      pts.clear();
-      for (int i = 0; threeWay_ && i < count; ++i)
-        pts.emplace_back(std::clamp(rows_[family][r][pos + i] - (base + e), 0.0, 1.0),
-                         levelLength(first + i));
-      // Crossings at the same spot form a vertical step: walk it from the
-      // first column's height towards the second's.
-      if (pts.size() > 1)
-        std::sort(pts.begin(), pts.end(), [&](const auto& x, const auto& y) {
-          if (x.first != y.first) return x.first < y.first;
-          return len0 > len1 ? x.second > y.second : x.second < y.second;
-        });
-      out[e - e0] = edgeIntegral(len0, len1, pts);
-      pos += count;
+      sum += profileIntegral(counts[e], counts[e + 1], columnLength(rowHeight(family, r, e)),
+                             columnLength(rowHeight(family, r, e + 1)), base + e,
+                             row != nullptr ? row + pos : nullptr);
+      pos += std::abs(counts[e] - counts[e + 1]);
     }
+    return sum;
   };
   double sum = 0.0;
-  std::vector<double> edges;
-  for (int iv = iv0; iv <= iv1; ++iv) {  // edges along u, each in 1 or 2 squares
-    rowIntegrals(0, iv, iu0, iu1, edges);
-    const double w = (iv == iv0 || iv == iv1) ? 0.5 : 1.0;
-    for (double x : edges) sum += w * x;
-  }
-  for (int iu = iu0; iu <= iu1; ++iu) {
-    rowIntegrals(1, iu, iv0, iv1, edges);
-    const double w = (iu == iu0 || iu == iu1) ? 0.5 : 1.0;
-    for (double x : edges) sum += w * x;
-  }
+  for (int iv = iv0; iv <= iv1; ++iv)  // edges along u, each in 1 or 2 squares
+    sum += ((iv == iv0 || iv == iv1) ? 0.5 : 1.0) * rowSum(0, iv, iu0, iu1);
+  for (int iu = iu0; iu <= iu1; ++iu)
+    sum += ((iu == iu0 || iu == iu1) ? 0.5 : 1.0) * rowSum(1, iu, iv0, iv1);
   for (int iv = iv0; iv <= iv1; ++iv)
     for (int iu = iu0; iu <= iu1; ++iu) {
       const int squares = (iu == iu0 || iu == iu1 ? 1 : 2) * (iv == iv0 || iv == iv1 ? 1 : 2);

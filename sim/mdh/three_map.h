@@ -88,6 +88,20 @@ class ThreeMap {
   double volume() const { return squaresVolume(0, nu_ - 1, 0, nv_ - 1); }
   // The same over the squares whose corners lie in columns [iu0, iu1] x [iv0, iv1].
   double squaresVolume(int iu0, int iu1, int iv0, int iv1) const;
+  // The integral of one edge's profile: between columns of heights h0 and h1,
+  // the edge starting at grid coordinate edgeStart, with its straddle(h0, h1)
+  // embedded crossings at `crossings` (ignored in a plain heightmap).
+  double edgeIntegral(double h0, double h1, int edgeStart, const double* crossings) const;
+  // How many grid squares hold an edge of row `index` (family 0: rows along u)
+  // and a column: the weights of their terms in volume() (1/2 and 1/4 each),
+  // so a change of a few edges and columns is a volume change of a few terms.
+  int squaresAtEdge(int family, int index) const {
+    const int n = family == 0 ? nv_ : nu_;
+    return (index > 0) + (index < n - 1);
+  }
+  int squaresAtColumn(int iu, int iv) const {
+    return ((iu > 0) + (iu < nu_ - 1)) * ((iv > 0) + (iv < nv_ - 1));
+  }
   double columnWeight(int iu, int iv) const {
     return ((iu == 0 || iu == nu_ - 1) && nu_ > 1 ? 0.5 : 1.0) *
            ((iv == 0 || iv == nv_ - 1) && nv_ > 1 ? 0.5 : 1.0);
@@ -101,6 +115,9 @@ class ThreeMap {
   ThreeMap restrictedTo(const GridBox& sub) const;
 
  private:
+  double profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
+                         const double* crossings) const;
+
   GridBox box_;
   Direction dir_;
   bool threeWay_;

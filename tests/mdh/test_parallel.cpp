@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/mdh/stock.h"
+#include "tests/mdh/analytic_solids.h"
 #include "tests/mdh/random_cuts.h"
 
 namespace mdhd::mdh {
@@ -67,6 +68,49 @@ TEST(Parallel, RandomSelectionIsReproducibleFromTheSeed) {
   const Snapshot b = simulate(5, 1, 16, {Rule::kRS});
   EXPECT_GT(a.stats.splits(), 0);
   expectIdentical(a, b);
+}
+
+// Steps large enough to be shared out on the worker pool (the small random
+// cuts above mostly stay on one thread): a 3 mm ball raster with tilted
+// passes that undercut (slow path, splits), on bricks of 16.
+Snapshot raster(int threads) {
+  StockOptions o;
+  o.density = 10;
+  o.threads = threads;
+  o.brick = 16;
+  const geom::Aabb box{{0, 0, 0}, {12, 10, 6}};
+  Stock stock(box, o);
+  stock.setToolRadius(1.5);
+  double removed = 0.0;
+  for (int pass = 0; pass < 4; ++pass)
+    for (double x = -1.0; x <= 13.0; x += 0.5) {
+      const double y = 1.0 + 2.7 * pass;
+      const glm::dvec3 axis = glm::normalize(glm::dvec3(0.0, pass % 2 ? 0.5 : -0.3, 1.0));
+      const glm::dvec3 tip{x, y, 3.0 + 0.15 * pass + 0.1 * x};
+      const auto tool = testing::ballMill(tip, axis, 1.5, 12.0);
+      removed += stock.cut(*tool, axis).removed_volume;
+    }
+  stock.checkInvariants();
+  EXPECT_NEAR(removed, box.hi.x * box.hi.y * box.hi.z - stock.volume(), 1e-6);
+  Snapshot snap{stock.volume(), stock.stats(), {}};
+  for (int axis = 0; axis < 3; ++axis)
+    for (int i = 0; i <= 120; i += 7)
+      for (int j = 0; j <= 100; j += 7) {
+        snap.lines.emplace_back();
+        if (i <= stock.grid().cubes[(axis + 1) % 3] && j <= stock.grid().cubes[(axis + 2) % 3])
+          stock.solidIntervals(axis, i, j, snap.lines.back());
+      }
+  return snap;
+}
+
+TEST(Parallel, LargeStepsOnTheWorkerPoolMatchOneThreadBitForBit) {
+  const Snapshot one = raster(1);
+  const Snapshot two = raster(2);
+  const Snapshot three = raster(3);  // more workers than cores is fine too
+  EXPECT_GT(one.stats.leaves, 20);
+  EXPECT_GT(one.stats.splits() + one.stats.resamples, 0);  // the slow path ran as well
+  expectIdentical(one, two);
+  expectIdentical(one, three);
 }
 
 }  // namespace

@@ -1,0 +1,91 @@
+// The fast path against the slow path's machinery on the same cuts: a heightmap
+// cut in place (fastCut) must equal the same heightmap unpacked, cut and packed
+// again in its own direction (SampleGrid::decode / applyCut / encodeMap), bit
+// for bit, and its incremental volume change must equal the change of volume().
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "sim/mdh/fast_cut.h"
+#include "sim/mdh/sample_grid.h"
+#include "tests/mdh/analytic_solids.h"
+#include "tests/mdh/random_cuts.h"
+
+namespace mdhd::mdh {
+namespace {
+
+void expectSameMap(const ThreeMap& a, const ThreeMap& b) {
+  ASSERT_EQ(a.columnsU(), b.columnsU());
+  ASSERT_EQ(a.columnsV(), b.columnsV());
+  for (int iv = 0; iv < a.columnsV(); ++iv)
+    for (int iu = 0; iu < a.columnsU(); ++iu)
+      ASSERT_EQ(a.height(iu, iv), b.height(iu, iv)) << "column " << iu << "," << iv;
+  if (!a.threeWay()) return;
+  for (int family = 0; family < 2; ++family)
+    for (int r = 0; r < a.rowCount(family); ++r)
+      ASSERT_EQ(a.row(family, r), b.row(family, r)) << "family " << family << " row " << r;
+}
+
+// Cuts from the map's open side, most of them upright and shallow: those keep
+// every column one run (fast path); tilted or deep ones often do not (overhang:
+// the map must stay as it was).
+void runRandomCuts(Direction dir, bool threeWay, std::uint64_t seed) {
+  GridSpec grid;
+  grid.h = 0.1;
+  grid.cubes = {24, 20, 22};
+  const GridBox box{{0, 0, 0}, {24, 20, 22}};
+  const geom::Aabb mm{{0, 0, 0}, {2.4, 2.0, 2.2}};
+  ThreeMap fast(box, dir, threeWay);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int done = 0, overhangs = 0;
+  for (int step = 0; step < 60; ++step) {
+    const bool tilted = unit(rng) < 0.3;
+    glm::dvec3 axis = (tilted ? 0.6 : 0.0) * testing::randomUnit(rng);
+    axis[dir.axis] = dir.sign;
+    axis = glm::normalize(axis);
+    glm::dvec3 tip;
+    for (int a = 0; a < 3; ++a) tip[a] = mm.lo[a] + unit(rng) * (mm.hi[a] - mm.lo[a]);
+    // Upright cuts reach at most 40 % into the cell from its open side.
+    const double depth = (tilted ? 1.0 : 0.4) * unit(rng) * (mm.hi[dir.axis] - mm.lo[dir.axis]);
+    tip[dir.axis] = dir.sign > 0 ? mm.hi[dir.axis] - depth : mm.lo[dir.axis] + depth;
+    const double r = 0.2 + 0.4 * unit(rng);
+    const auto tool = unit(rng) < 0.6 ? testing::ballMill(tip, axis, r, 6.0)
+                                      : testing::flatMill(tip, axis, r, 6.0);
+    const IntervalCache cache(grid, *tool);
+    const ThreeMap before = fast;
+    double delta = 0.0;
+    const FastCut result = fastCut(fast, cache, delta);
+    if (result == FastCut::kOverhang) {
+      ++overhangs;
+      expectSameMap(fast, before);
+      continue;
+    }
+    SampleGrid g = SampleGrid::decode(before, box);
+    g.applyCut(dir.axis, cache);
+    const ThreeMap slow = encodeMap(g, dir, threeWay);
+    expectSameMap(fast, slow);
+    EXPECT_NEAR(delta, fast.volume() - before.volume(), 1e-9 * (1.0 + box.pointCount()));
+    if (result == FastCut::kUnchanged) {
+      EXPECT_EQ(delta, 0.0);
+    }
+    done += result == FastCut::kDone;
+  }
+  EXPECT_GT(done, 20);  // the comparison really ran
+  EXPECT_GT(overhangs, 0);
+}
+
+TEST(FastCut, MatchesTheSlowPathBitForBitInEveryDirection) {
+  for (int index = 0; index < 6; ++index) {
+    SCOPED_TRACE(::testing::Message() << "direction " << index);
+    runRandomCuts(directionFromIndex(index), true, 7 + index);
+  }
+}
+
+TEST(FastCut, PlainHeightmapsToo) {
+  runRandomCuts(Direction{2, 1}, false, 5);
+  runRandomCuts(Direction{0, -1}, false, 6);
+}
+
+}  // namespace
+}  // namespace mdhd::mdh
