@@ -5,6 +5,46 @@
 
 namespace mdhd::geom {
 
+namespace {
+
+// The disks of squared radius r2 centred at (s de, s dn - h0) (along the line, across
+// it) for s in [s0, s1]: the chord of their union, the stadium, on the line.
+bool stadiumExtent(double r2, const CrossMove& m, double h0, double s0, double s1,
+                   double quadricTol, double& lo, double& hi) {
+  double tlo = HUGE_VAL;
+  double thi = -HUGE_VAL;
+  int sides = 0;
+  if (m.dn != 0.0 && s1 > s0) {
+    // The sides: the centres' track offset by +-R along its normal (-dn, de) / planar.
+    const double r = std::sqrt(r2);
+    for (const double sign : {1.0, -1.0}) {
+      const double s = (h0 - sign * r * m.de / m.planar) / m.dn;
+      if (!(s >= s0 && s <= s1)) continue;
+      const double t = s * m.de - sign * r * m.dn / m.planar;
+      tlo = std::min(tlo, t);
+      thi = std::max(thi, t);
+      ++sides;
+    }
+  }
+  if (sides < 2) {
+    // The end circles (a line crosses a convex set's boundary twice: two sides are all).
+    for (const double s : {s0, s1}) {
+      const double g = s * m.dn - h0;
+      const double q = r2 - g * g;
+      if (q < -quadricTol) continue;
+      const double w = std::sqrt(std::max(0.0, q));
+      tlo = std::min(tlo, s * m.de - w);
+      thi = std::max(thi, s * m.de + w);
+    }
+  }
+  if (!(tlo <= thi)) return false;
+  lo = tlo;
+  hi = thi;
+  return true;
+}
+
+}  // namespace
+
 bool crossExtent(const PieceQuadric& p, const CrossMove& m, double zeta0, double h0,
                  double linearTol, double quadricTol, double& lo, double& hi) {
   // The s for which the line's height lies in the piece's, within [0, L].
@@ -22,6 +62,8 @@ bool crossExtent(const PieceQuadric& p, const CrossMove& m, double zeta0, double
       s0 = s1 = 0.5 * (s0 + s1);
     }
   }
+  if (p.gamma == 0.0 && p.beta == 0.0)
+    return stadiumExtent(p.alpha, m, h0, s0, s1, quadricTol, lo, hi);
   // Q(s) = q2 s^2 + q1 s + q0
   const double zd = m.zd, dn = m.dn, de = m.de;
   const double q2 = p.gamma * zd * zd - dn * dn;

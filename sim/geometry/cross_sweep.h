@@ -15,9 +15,9 @@ struct PieceQuadric {
 
 // The move seen from a line square to the axis: zd, dn, de = the unit move's
 // components along the axis, across the line (in the plane square to the axis) and
-// along the line; length = L.
+// along the line; length = L; planar = hypot(dn, de), how fast the disks' centres move.
 struct CrossMove {
-  double zd = 0, dn = 0, de = 0, length = 0;
+  double zd = 0, dn = 0, de = 0, length = 0, planar = 0;
 };
 
 // The extent [lo, hi] along the line (relative to the tip's coordinate) of the

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "sim/geometry/pose_interpolation.h"
 #include "sim/geometry/section_solver.h"
@@ -16,6 +17,12 @@ namespace mdhd::geom {
 namespace {
 
 constexpr int kMaxSegments = 100000;
+
+// A coordinate by a run-time index: glm's operator[] is a switch, and the line queries
+// index by axis in every test.
+inline double coord(const glm::dvec3& v, int i) {
+  return glm::value_ptr(v)[i];
+}
 
 Aabb emptyBox() {
   constexpr double inf = std::numeric_limits<double>::infinity();
@@ -213,7 +220,8 @@ void SweptVolume::addTranslation(const ToolPart& part, const std::vector<int>& p
         const glm::dvec3 n = glm::cross(w, e);
         body.crossing[a] = true;
         body.crossNormal[a] = n / glm::length(n);
-        body.cross[a] = CrossMove{zd, glm::dot(body.dir, body.crossNormal[a]), body.dir[a], len};
+        const double dn = glm::dot(body.dir, body.crossNormal[a]);
+        body.cross[a] = CrossMove{zd, dn, body.dir[a], len, std::hypot(dn, body.dir[a])};
       }
     }
     // Candidates on an edge are kept within these; far below the grid's resolution.
@@ -289,23 +297,25 @@ bool SweptVolume::bodyInterval(const SweptBody& body, int axis, double u, double
                                Interval& out) const {
   LineFrame f{axis, (axis + 1) % 3, (axis + 2) % 3, u, v, 0, 0, 0, 0};
   glm::dvec3 delta(0.0);
-  delta[f.i1] = u - body.tip[f.i1];
-  delta[f.i2] = v - body.tip[f.i2];
+  glm::value_ptr(delta)[f.i1] = u - coord(body.tip, f.i1);
+  glm::value_ptr(delta)[f.i2] = v - coord(body.tip, f.i2);
   const AxisTerms& k = body.terms[axis];
   f.z0 = glm::dot(body.axis, delta);
   f.r0re = -f.z0 * k.ze;
   f.r0rd = glm::dot(delta, body.dir) - f.z0 * k.zd;
   f.r0r0 = glm::dot(delta, delta) - f.z0 * f.z0;
-  const double base = body.tip[axis];
+  const double base = coord(body.tip, axis);
 
   double lo = std::numeric_limits<double>::infinity();
   double hi = -lo;
   enum class Result { kMiss, kHit, kSkipped };
   auto solve = [&](int i) {
     const SweptPiece& p = pieces_[i];
-    if (u < p.box.lo[f.i1] || u > p.box.hi[f.i1] || v < p.box.lo[f.i2] || v > p.box.hi[f.i2])
+    if (u < coord(p.box.lo, f.i1) || u > coord(p.box.hi, f.i1) || v < coord(p.box.lo, f.i2) ||
+        v > coord(p.box.hi, f.i2))
       return Result::kMiss;
-    if (p.box.lo[axis] >= lo && p.box.hi[axis] <= hi) return Result::kSkipped;  // inside hull
+    if (coord(p.box.lo, axis) >= lo && coord(p.box.hi, axis) <= hi)
+      return Result::kSkipped;  // inside hull
     double plo = 0.0;
     double phi = 0.0;
     if (!pieceExtent(body, p, f, general, plo, phi)) return Result::kMiss;
@@ -337,8 +347,8 @@ bool SweptVolume::crossBodyInterval(const SweptBody& body, int axis, double u, d
   const int i1 = (axis + 1) % 3;
   const int i2 = (axis + 2) % 3;
   glm::dvec3 delta(0.0);
-  delta[i1] = u - body.tip[i1];
-  delta[i2] = v - body.tip[i2];
+  glm::value_ptr(delta)[i1] = u - coord(body.tip, i1);
+  glm::value_ptr(delta)[i2] = v - coord(body.tip, i2);
   const CrossMove& m = body.cross[axis];
   const double zeta0 = glm::dot(body.axis, delta);
   const double h0 = glm::dot(body.crossNormal[axis], delta);
@@ -350,7 +360,9 @@ bool SweptVolume::crossBodyInterval(const SweptBody& body, int axis, double u, d
   for (int i = body.pieceBegin; i < body.pieceEnd; ++i) {
     const SweptPiece& p = pieces_[i];
     if (p.q.z1 < za || p.q.z0 > zb) continue;
-    if (u < p.box.lo[i1] || u > p.box.hi[i1] || v < p.box.lo[i2] || v > p.box.hi[i2]) continue;
+    if (u < coord(p.box.lo, i1) || u > coord(p.box.hi, i1) || v < coord(p.box.lo, i2) ||
+        v > coord(p.box.hi, i2))
+      continue;
     double plo = 0.0;
     double phi = 0.0;
     if (!crossExtent(p.q, m, zeta0, h0, body.linearTol, body.quadricTol, plo, phi)) continue;
@@ -358,7 +370,7 @@ bool SweptVolume::crossBodyInterval(const SweptBody& body, int axis, double u, d
     hi = std::max(hi, phi);
   }
   if (!(hi > lo)) return false;
-  out = Interval{lo + body.tip[axis], hi + body.tip[axis]};
+  out = Interval{lo + coord(body.tip, axis), hi + coord(body.tip, axis)};
   return out.hi > out.lo;
 }
 
@@ -376,16 +388,19 @@ void SweptVolume::intervals(int axis, double u, double v, bool general,
   if (axis < 0 || axis > 2) return;
   const int i1 = (axis + 1) % 3;
   const int i2 = (axis + 2) % 3;
-  if (u < bounds_.lo[i1] || u > bounds_.hi[i1] || v < bounds_.lo[i2] || v > bounds_.hi[i2]) return;
+  if (u < coord(bounds_.lo, i1) || u > coord(bounds_.hi, i1) || v < coord(bounds_.lo, i2) ||
+      v > coord(bounds_.hi, i2))
+    return;
   const size_t first = out.size();
   for (const SweptBody& body : bodies_) {
-    if (u < body.box.lo[i1] || u > body.box.hi[i1] || v < body.box.lo[i2] || v > body.box.hi[i2])
+    if (u < coord(body.box.lo, i1) || u > coord(body.box.hi, i1) || v < coord(body.box.lo, i2) ||
+        v > coord(body.box.hi, i2))
       continue;
     // A body whose box along the line lies inside an interval found already cannot
     // add to the union (consecutive steps of a 5-axis move overlap this way).
     bool covered = false;
     for (size_t i = first; i < out.size() && !covered; ++i)
-      covered = body.box.lo[axis] >= out[i].lo && body.box.hi[axis] <= out[i].hi;
+      covered = coord(body.box.lo, axis) >= out[i].lo && coord(body.box.hi, axis) <= out[i].hi;
     if (covered) continue;
     Interval iv;
     bool hit = false;
@@ -394,11 +409,11 @@ void SweptVolume::intervals(int axis, double u, double v, bool general,
     } else if (body.alongAxis == axis) {
       double lo = 0.0;
       double hi = 0.0;
-      hit = axialExtent(profiles_[body.profile], body.along, u - body.tip[i1], v - body.tip[i2],
-                        body.linearTol, lo, hi);
+      hit = axialExtent(profiles_[body.profile], body.along, u - coord(body.tip, i1),
+                        v - coord(body.tip, i2), body.linearTol, lo, hi);
       // Heights run along the line with the axis' sign.
-      const double base = body.tip[axis];
-      if (body.axis[axis] > 0.0)
+      const double base = coord(body.tip, axis);
+      if (coord(body.axis, axis) > 0.0)
         iv = Interval{base + lo, base + hi};
       else
         iv = Interval{base - hi, base - lo};
