@@ -25,30 +25,35 @@ bool inHalfPlanes(const HalfPlane (&h)[4], const bool (&live)[4], double t, doub
   return true;
 }
 
-// Parameters lambda where g(p + lambda v) = 0, v a unit vector: 0, 1 or 2 of them.
+// Real roots of A x^2 + 2 B x + C = 0, linear when |A| <= zeroA (a tangent whose
+// discriminant rounding made negative still touches); none when it is constant.
+int roots(double A, double B, double C, double zeroA, double (&x)[2]) {
+  if (std::abs(A) <= zeroA) {
+    if (B == 0.0) return 0;
+    x[0] = -C / (2.0 * B);
+    return 1;
+  }
+  double disc = B * B - A * C;
+  if (disc < 0.0) {
+    if (disc < -1e-12 * (B * B + std::abs(A * C))) return 0;
+    disc = 0.0;
+  }
+  const double q = -(B + std::copysign(std::sqrt(disc), B));
+  if (q == 0.0) {
+    x[0] = 0.0;
+    return 1;
+  }
+  x[0] = q / A;
+  x[1] = C / q;
+  return 2;
+}
+
+// Parameters lambda where g(p + lambda v) = 0, v a unit vector: 0, 1 or 2 of them (none
+// when g is constant along the line: vertices decide).
 int lineRoots(const Quadric2& g, double pt, double ps, double vt, double vs, double (&lam)[2]) {
   const double a2 = g.a * vt * vt + 2.0 * g.b * vt * vs + g.c * vs * vs;
   const double b2 = vt * (g.a * pt + g.b * ps + g.d) + vs * (g.b * pt + g.c * ps + g.e);
-  const double c2 = g(pt, ps);
-  if (std::abs(a2) <= kTiny) {
-    if (b2 == 0.0) return 0;  // g is constant along the line: vertices decide
-    lam[0] = -c2 / (2.0 * b2);
-    return 1;
-  }
-  double disc = b2 * b2 - a2 * c2;
-  if (disc < 0.0) {
-    // A tangent line whose discriminant rounding made negative still touches.
-    if (disc < -1e-12 * (b2 * b2 + std::abs(a2 * c2))) return 0;
-    disc = 0.0;
-  }
-  const double q = -(b2 + std::copysign(std::sqrt(disc), b2));
-  if (q == 0.0) {
-    lam[0] = 0.0;
-    return 1;
-  }
-  lam[0] = q / a2;
-  lam[1] = c2 / q;
-  return 2;
+  return roots(a2, b2, g(pt, ps), kTiny, lam);
 }
 
 // The points of g = 0 on the line n . (t, s) + k = 0 that lie in the half-planes.
@@ -120,27 +125,9 @@ bool sectionExtent(const Quadric2& g, const HalfPlane (&h)[4], const SectionTole
 
 namespace {
 
-// Real roots of A x^2 + 2 B x + C = 0 (a tangent whose discriminant rounding made
-// negative still touches); none when the quadratic is constant.
-int roots(double A, double B, double C, double (&x)[2]) {
-  if (std::abs(A) <= kTiny * (std::abs(B) + std::abs(C))) {
-    if (B == 0.0) return 0;
-    x[0] = -C / (2.0 * B);
-    return 1;
-  }
-  double disc = B * B - A * C;
-  if (disc < 0.0) {
-    if (disc < -1e-12 * (B * B + std::abs(A * C))) return 0;
-    disc = 0.0;
-  }
-  const double q = -(B + std::copysign(std::sqrt(disc), B));
-  if (q == 0.0) {
-    x[0] = 0.0;
-    return 1;
-  }
-  x[0] = q / A;
-  x[1] = C / q;
-  return 2;
+// roots() with a leading coefficient that is zero relative to the others.
+int bandRoots(double A, double B, double C, double (&x)[2]) {
+  return roots(A, B, C, kTiny * (std::abs(B) + std::abs(C)), x);
 }
 
 }  // namespace
@@ -168,7 +155,7 @@ bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol
   double x[2];
   // The edges s = 0 and s = L: g(t, s) = a t^2 + 2 (b s + d) t + (c s^2 + 2 e s + f).
   for (const double s : ends) {
-    const int n = roots(g.a, g.b * s + g.d, (g.c * s + 2.0 * g.e) * s + g.f, x);
+    const int n = bandRoots(g.a, g.b * s + g.d, (g.c * s + 2.0 * g.e) * s + g.f, x);
     for (int i = 0; i < n; ++i)
       if (inZ(x[i], s)) ext.add(x[i]);
   }
@@ -179,7 +166,7 @@ bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol
     const double A = (g.a * mu + 2.0 * g.b) * mu + g.c;
     const double B = g.a * tau * mu + g.b * tau + g.d * mu + g.e;
     const double C = (g.a * tau + 2.0 * g.d) * tau + g.f;
-    const int n = roots(A, B, C, x);
+    const int n = bandRoots(A, B, C, x);
     for (int i = 0; i < n; ++i)
       if (inS(x[i])) ext.add(tau + mu * x[i]);
   }
@@ -190,7 +177,7 @@ bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol
     const double A = g.a + (2.0 * g.b + g.c * nu) * nu;
     const double B = g.b * s0 + g.c * s0 * nu + g.d + g.e * nu;
     const double C = (g.c * s0 + 2.0 * g.e) * s0 + g.f;
-    const int n = roots(A, B, C, x);
+    const int n = bandRoots(A, B, C, x);
     for (int i = 0; i < n; ++i) {
       const double s = s0 + nu * x[i];
       if (inS(s) && inZ(x[i], s)) ext.add(x[i]);
@@ -201,7 +188,7 @@ bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol
     const double A = (g.a * lam + 2.0 * g.b) * lam + g.c;
     const double B = g.a * t0 * lam + g.b * t0 + g.d * lam + g.e;
     const double C = (g.a * t0 + 2.0 * g.d) * t0 + g.f;
-    const int n = roots(A, B, C, x);
+    const int n = bandRoots(A, B, C, x);
     for (int i = 0; i < n; ++i) {
       const double t = t0 + lam * x[i];
       if (inS(x[i]) && inZ(t, x[i])) ext.add(t);

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "sim/geometry/line_solid.h"
 #include "sim/geometry/signed_distance.h"
@@ -29,6 +32,15 @@ inline Tool makeTool(ToolShape shape, double diameter = 6.0, double flutes = 12.
   if (shape == ToolShape::kDrill) t.tip_angle = 118.0;
   t.holder = {{20.0, 15.0}, {30.0, 10.0}};
   return t;
+}
+
+// A random unit vector, none of whose draws was too short to normalise well.
+inline glm::dvec3 randomUnit(std::mt19937& rng) {
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  glm::dvec3 v;
+  do v = {uni(rng), uni(rng), uni(rng)};
+  while (glm::dot(v, v) < 0.04);
+  return glm::normalize(v);
 }
 
 inline std::vector<ToolShape> allShapes() {

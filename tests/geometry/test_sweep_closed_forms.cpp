@@ -146,23 +146,17 @@ TEST(SweepClosedForms, TiltedAndTurningStepsAgreeWithTheGeneralSolver) {
   // candidate enumeration, on random tilts, moves and 5-axis turns.
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  auto randomUnit = [&] {
-    glm::dvec3 v;
-    do v = {uni(rng), uni(rng), uni(rng)};
-    while (glm::length(v) < 0.2);
-    return glm::normalize(v);
-  };
   Stats stats;
   for (ToolShape shape : testing::allShapes())
     for (int trial = 0; trial < 12; ++trial) {
       const ToolPart part = makeToolPart(makeTool(shape, 6.0, 12.0), ToolPartKind::kCutter);
-      glm::dvec3 w = randomUnit();
+      glm::dvec3 w = testing::randomUnit(rng);
       if (trial == 0) w = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));  // square to x lines
       const ToolPose a{{uni(rng), uni(rng), uni(rng)}, w};
-      glm::dvec3 move = 5.0 * randomUnit();
+      glm::dvec3 move = 5.0 * testing::randomUnit(rng);
       if (trial == 1) move = 3.0 * w;  // a tilted plunge
       glm::dvec3 w2 = w;
-      if (trial >= 6) w2 = glm::normalize(w + 0.3 * randomUnit());  // a 5-axis turn
+      if (trial >= 6) w2 = glm::normalize(w + 0.3 * testing::randomUnit(rng));  // a 5-axis turn
       const ToolPose b{a.tip + move, w2};
       const SweptVolume s = SweptVolume::between(part, a, b, 0, 0.05);
       compareSweep(s, {a, b}, 3.0, rng, stats,

@@ -79,19 +79,12 @@ TEST(TranslationalSweep, BallAlongALineIsACapsuleAndItsStem) {
 
 TEST(TranslationalSweep, EveryShapeAgreesWithTheBruteForceReference) {
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  auto randomUnit = [&] {
-    glm::dvec3 v;
-    do v = {uni(rng), uni(rng), uni(rng)};
-    while (glm::length(v) < 0.2);
-    return glm::normalize(v);
-  };
   for (ToolShape shape : testing::allShapes()) {
     const Tool tool = makeTool(shape);
     const ToolPart part = makeToolPart(tool, ToolPartKind::kCutter);
     for (int trial = 0; trial < 6; ++trial) {
-      glm::dvec3 axis = randomUnit();
-      glm::dvec3 move = 6.0 * randomUnit();
+      glm::dvec3 axis = testing::randomUnit(rng);
+      glm::dvec3 move = 6.0 * testing::randomUnit(rng);
       if (trial == 0) axis = {0, 0, 1}, move = {0, 0, -4};  // a plunge on the grid
       if (trial == 1) axis = {0, 0, 1}, move = {5, 3, 0};   // a 3-axis side move
       if (trial == 2) move = -3.0 * axis;                   // a tilted plunge
