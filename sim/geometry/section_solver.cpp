@@ -147,8 +147,11 @@ bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol
   const double ends[2] = {0.0, L};
   const double slab[2] = {band.z0, band.z1};
   // Corners.
+  const bool open[2] = {band.open0, band.open1};
   for (const double s : ends)
-    for (const double z : slab) {
+    for (int k = 0; k < 2; ++k) {
+      if (open[k]) continue;
+      const double z = slab[k];
       const double t = (z - band.zeta0 + zd * s) / ze;
       if (g(t, s) <= tol.quadric) ext.add(t);
     }
@@ -161,7 +164,9 @@ bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol
   }
   // The slab's edges: t = tau + mu s.
   const double mu = zd / ze;
-  for (const double z : slab) {
+  for (int k = 0; k < 2; ++k) {
+    if (open[k]) continue;
+    const double z = slab[k];
     const double tau = (z - band.zeta0) / ze;
     const double A = (g.a * mu + 2.0 * g.b) * mu + g.c;
     const double B = g.a * tau * mu + g.b * tau + g.d * mu + g.e;

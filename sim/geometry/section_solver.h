@@ -39,8 +39,11 @@ bool sectionExtent(const Quadric2& g, const HalfPlane (&h)[4], const SectionTole
 // half-planes 0 <= s <= length and z0 <= zeta0 + ze t - zd s <= z1 (ze != 0), a
 // parallelogram. Its four corners need no half-plane tests and each edge is one
 // quadratic in one unknown: the candidates of sectionExtent at a fraction of the cost.
+// open0/open1: the solid goes on smoothly past z0/z1 (smoothJoin), so that edge and
+// its corners offer no candidate.
 struct Band {
   double length = 0, ze = 1, zd = 0, zeta0 = 0, z0 = 0, z1 = 0;
+  bool open0 = false, open1 = false;
 };
 bool bandExtent(const Quadric2& g, const Band& band, const SectionTolerance& tol, double& lo,
                 double& hi);

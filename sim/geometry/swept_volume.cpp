@@ -230,8 +230,11 @@ void SweptVolume::addTranslation(const ToolPart& part, const std::vector<int>& p
     body.quadricTol = 1e-13 * scale * scale;
     body.box = emptyBox();
     body.pieceBegin = static_cast<int>(pieces_.size());
-    for (const RevolvedPiece& rp : cb.pieces) {
+    for (std::size_t pi = 0; pi < cb.pieces.size(); ++pi) {
+      const RevolvedPiece& rp = cb.pieces[pi];
       SweptPiece sp{{rp.z0, rp.z1, rp.alpha, rp.beta, rp.gamma}, {}};
+      sp.smoothBelow = pi > 0 && smoothJoin(cb.pieces[pi - 1], rp);
+      sp.smoothAbove = pi + 1 < cb.pieces.size() && smoothJoin(rp, cb.pieces[pi + 1]);
       sp.box = cylinderBox(tr.from, w, rp.z0, rp.z1, rp.maxRadius());
       grow(sp.box, cylinderBox(tr.to, w, rp.z0, rp.z1, rp.maxRadius()));
       grow(body.box, sp.box);
@@ -266,7 +269,9 @@ bool SweptVolume::pieceExtent(const SweptBody& body, const SweptPiece& p, const 
   g.e = -f.r0rd + 0.5 * q.beta * k.zd + q.gamma * f.z0 * k.zd;
   g.f = f.r0r0 - q.alpha - q.beta * f.z0 - q.gamma * f.z0 * f.z0;
   if (k.ze != 0.0 && !general)
-    return bandExtent(g, Band{body.length, k.ze, k.zd, f.z0, q.z0, q.z1}, tol, lo, hi);
+    return bandExtent(g,
+                      Band{body.length, k.ze, k.zd, f.z0, q.z0, q.z1, p.smoothBelow, p.smoothAbove},
+                      tol, lo, hi);
   if (k.ze != 0.0) {
     const HalfPlane h[4] = {{0.0, -1.0, 0.0},
                             {0.0, 1.0, -body.length},

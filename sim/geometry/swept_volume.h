@@ -71,6 +71,7 @@ class SweptVolume final : public LineSolid {
   struct SweptPiece {
     PieceQuadric q;
     Aabb box;
+    bool smoothBelow = false, smoothAbove = false;  // joins of the body's stack
   };
   struct SweptBody {
     Aabb box;

@@ -52,6 +52,18 @@ RevolvedPiece spherePiece(double centre, double radius, double z0, double z1) {
   return p;
 }
 
+bool smoothJoin(const RevolvedPiece& below, const RevolvedPiece& above) {
+  const double z = below.z1;
+  const double scale = 1.0 + std::abs(z) + below.maxRadius() + above.maxRadius();
+  // Radius squared and its derivative alpha + beta z + gamma z^2, beta + 2 gamma z.
+  const double r2b = below.alpha + (below.beta + below.gamma * z) * z;
+  const double r2a = above.alpha + (above.beta + above.gamma * z) * z;
+  const double db = below.beta + 2.0 * below.gamma * z;
+  const double da = above.beta + 2.0 * above.gamma * z;
+  return std::abs(above.z0 - z) <= 1e-12 * scale && std::abs(r2b - r2a) <= 1e-12 * scale * scale &&
+         std::abs(db - da) <= 1e-12 * scale && r2b > 1e-12 * scale * scale;
+}
+
 double ConvexBody::radiusAt(double z) const {
   for (const RevolvedPiece& p : pieces)
     if (z >= p.z0 && z <= p.z1) return p.radiusAt(z);

@@ -33,6 +33,11 @@ RevolvedPiece frustumPiece(double z0, double z1, double r0, double r1);
 // The zone z0 <= z <= z1 of a ball of `radius` centred on the axis at `centre`.
 RevolvedPiece spherePiece(double centre, double radius, double z0, double z1);
 
+// Whether `above` continues `below` (stacked on it) without a crease: same radius and
+// same slope where they meet (a ball's zone under its cylinder), so no extreme of a
+// section lies on their common plane that is not also one of either piece's own.
+bool smoothJoin(const RevolvedPiece& below, const RevolvedPiece& above);
+
 // A convex solid of revolution: pieces stacked bottom to top, touching.
 struct ConvexBody {
   std::vector<RevolvedPiece> pieces;

@@ -169,5 +169,26 @@ TEST(ToolPart, InvalidToolsAreRefused) {
   EXPECT_THROW(makeToolPart(tool, ToolPartKind::kCutter), std::invalid_argument);
 }
 
+TEST(ToolPart, SmoothJoinsAreTheBallsEquatorOnly) {
+  // The ball's zone meets its cylinder with the same slope; the drill's cone and the
+  // bull's frustums meet with a crease, where a section's extreme may lie.
+  auto pieces = [](ToolShape shape) {
+    return makeToolPart(makeTool(shape), ToolPartKind::kCutter).bodies[0].pieces;
+  };
+  const auto ball = pieces(ToolShape::kBall);
+  ASSERT_EQ(ball.size(), 2u);
+  EXPECT_TRUE(smoothJoin(ball[0], ball[1]));
+  const auto drill = pieces(ToolShape::kDrill);
+  ASSERT_EQ(drill.size(), 2u);
+  EXPECT_FALSE(smoothJoin(drill[0], drill[1]));
+  const auto bull = pieces(ToolShape::kBull);
+  ASSERT_GT(bull.size(), 3u);
+  for (std::size_t i = 0; i + 1 < bull.size(); ++i) EXPECT_FALSE(smoothJoin(bull[i], bull[i + 1]));
+  // Pieces that do not touch, or meet at another radius, never join smoothly.
+  EXPECT_FALSE(smoothJoin(cylinderPiece(0.0, 1.0, 2.0), cylinderPiece(1.5, 2.0, 2.0)));
+  EXPECT_FALSE(smoothJoin(cylinderPiece(0.0, 1.0, 2.0), cylinderPiece(1.0, 2.0, 2.5)));
+  EXPECT_TRUE(smoothJoin(cylinderPiece(0.0, 1.0, 2.0), cylinderPiece(1.0, 2.0, 2.0)));
+}
+
 }  // namespace
 }  // namespace mdhd::geom
