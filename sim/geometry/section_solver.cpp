@@ -27,7 +27,8 @@ bool inHalfPlanes(const HalfPlane (&h)[4], const bool (&live)[4], double t, doub
 
 // Real roots of A x^2 + 2 B x + C = 0, linear when |A| <= zeroA (a tangent whose
 // discriminant rounding made negative still touches); none when it is constant.
-int roots(double A, double B, double C, double zeroA, double (&x)[2]) {
+[[gnu::always_inline]] inline int roots(double A, double B, double C, double zeroA,
+                                        double (&x)[2]) {
   if (std::abs(A) <= zeroA) {
     if (B == 0.0) return 0;
     x[0] = -C / (2.0 * B);
@@ -126,7 +127,7 @@ bool sectionExtent(const Quadric2& g, const HalfPlane (&h)[4], const SectionTole
 namespace {
 
 // roots() with a leading coefficient that is zero relative to the others.
-int bandRoots(double A, double B, double C, double (&x)[2]) {
+[[gnu::always_inline]] inline int bandRoots(double A, double B, double C, double (&x)[2]) {
   return roots(A, B, C, kTiny * (std::abs(B) + std::abs(C)), x);
 }
 
