@@ -102,7 +102,7 @@ int sweepSegments(const ToolPart& part, const ToolPose& a, const ToolPose& b, in
 }
 
 SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const ToolPose& b,
-                                 int steps, double tolerance) {
+                                 int steps, double tolerance, SweepEnds ends) {
   const int n = sweepSegments(part, a, b, steps, tolerance);
   const ToolPose pa = normalizedPose(a);
   const ToolPose pb = normalizedPose(b);
@@ -119,6 +119,15 @@ SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const 
   };
   std::vector<Translation> moves;
   moves.reserve(n + 1);
+  if (ends == SweepEnds::kMidpoints) {
+    // Segment j holds the axis at (j + 1/2)/n while the centre runs on its chord.
+    for (int j = 0; j < n; ++j) {
+      const glm::dvec3 w = interpolatePose(pa, pb, (j + 0.5) / n).axis;
+      moves.push_back(
+          Translation{centre(double(j) / n) - h * w, centre(double(j + 1) / n) - h * w, w});
+    }
+    return SweptVolume(part, moves, betweenErrorBound(th, n, part.reach(h), h));
+  }
   for (int j = 0; j <= n; ++j) {
     const glm::dvec3 w = interpolatePose(pa, pb, double(j) / n).axis;
     const glm::dvec3 from = j == 0 ? pa.tip : centre((j - 0.5) / n) - h * w;

@@ -24,6 +24,13 @@ struct Translation {
   glm::dvec3 axis{0.0, 0.0, 1.0};
 };
 
+// How SweptVolume::between places the held axes of a turning move. kExact: n + 1
+// translations, the two end poses held exactly over half a segment each. kMidpoints:
+// n translations, each segment holding its middle pose's axis: the same errorBound()
+// with one translation fewer (a third fewer for n = 2), the end poses then only within
+// errorBound() (a move's last step and the next move's first overlap there anyway).
+enum class SweepEnds { kExact, kMidpoints };
+
 class SweptVolume final : public LineSolid {
  public:
   // The part moving from `a` to `b`: tip on the segment, axis along the great circle
@@ -31,11 +38,12 @@ class SweptVolume final : public LineSolid {
   // errorBound() <= tolerance (one for a pure translation). The pose at j/n holds its
   // axis from (j - 1/2)/n to (j + 1/2)/n while the part's centre (centreHeight) runs
   // on the chord of its path: the bound is the turn of half a segment at the reach
-  // from the centre plus the chord's sagitta. The end poses are exact. Throws
+  // from the centre plus the chord's sagitta. The end poses are exact (`ends`
+  // kExact; kMidpoints: one translation fewer, the ends within the bound). Throws
   // std::invalid_argument for a non-finite pose, a zero axis, opposite axes (no
   // unique great circle: split the move) or a tolerance that is not > 0 when needed.
   static SweptVolume between(const ToolPart& part, const ToolPose& a, const ToolPose& b, int steps,
-                             double tolerance);
+                             double tolerance, SweepEnds ends = SweepEnds::kExact);
   // The part standing at one pose (a stamp).
   static SweptVolume at(const ToolPart& part, const ToolPose& pose);
   // Through a chain of poses (at least one), tips joined by segments, each pose's axis

@@ -99,6 +99,38 @@ TEST(FiveAxisSweep, AdaptiveStepsStayWithinTheTolerance) {
   }
 }
 
+TEST(FiveAxisSweep, MidpointStepsKeepTheBoundWithOneTranslationFewer) {
+  const double tol = 0.01;
+  for (ToolShape shape : {ToolShape::kBall, ToolShape::kBull}) {
+    const ToolPart part = makeToolPart(makeTool(shape), ToolPartKind::kCutter);
+    const ToolPose a{{0, 0, 0}, {0, 0, 1}};
+    const ToolPose b{{4, 2, -1}, tilted(30, {1, 0.5, 0})};
+    const SweptVolume exact = SweptVolume::between(part, a, b, 0, tol);
+    const SweptVolume mid = SweptVolume::between(part, a, b, 0, tol, SweepEnds::kMidpoints);
+    EXPECT_EQ(mid.translations().size() + 1, exact.translations().size());
+    EXPECT_EQ(mid.errorBound(), exact.errorBound());
+    EXPECT_LE(mid.errorBound(), tol);
+    const Agreement r = compare(mid, Reference{part, a, b}, tol + 1e-4);
+    EXPECT_EQ(r.wrong, 0) << toolShapeName(shape);
+    EXPECT_GT(r.decided, 1000);
+    // The comparison can tell: one coarse midpoint step is off by more than the tolerance.
+    const SweptVolume coarse = SweptVolume::between(part, a, b, 1, tol, SweepEnds::kMidpoints);
+    EXPECT_EQ(coarse.translations().size(), 1u);
+    EXPECT_GT(compare(coarse, Reference{part, a, b}, tol + 1e-4).wrong, 0);
+  }
+  // A 5-axis finishing move (the bench dome's: 15 degrees tilt, C turning 0.3 degrees,
+  // 30 mm flutes): two translations instead of three for the same bound.
+  Tool t = makeTool(ToolShape::kBall, 6.0, 30.0);
+  t.length = 60.0;
+  const ToolPart part = makeToolPart(t, ToolPartKind::kCutter);
+  const double c = 0.3 * testing::kPi / 180.0;
+  const ToolPose a{{0, 0, 0}, tilted(15, {1, 0, 0})};
+  const ToolPose b{{0.5, 0, -0.05}, tilted(15, {std::cos(c), std::sin(c), 0})};
+  EXPECT_EQ(SweptVolume::between(part, a, b, 0, 0.01).translations().size(), 3u);
+  EXPECT_EQ(SweptVolume::between(part, a, b, 0, 0.01, SweepEnds::kMidpoints).translations().size(),
+            2u);
+}
+
 TEST(FiveAxisSweep, TurningAboutTheTipAlone) {
   const double tol = 0.005;
   const ToolPart part = makeToolPart(makeTool(ToolShape::kBull), ToolPartKind::kCutter);
