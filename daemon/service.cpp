@@ -1,11 +1,13 @@
 #include "daemon/service.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "daemon/openapi_parts.h"
 #include "daemon/routes_jobs.h"
 #include "daemon/routes_machines.h"
 #include "daemon/routes_ops.h"
+#include "daemon/routes_shadows.h"
 #include "protocol/json_schema.h"
 
 namespace mdhd::service {
@@ -42,12 +44,20 @@ Service::Service(ServiceConfig config)
       log_(std::make_unique<JsonLog>(config_.log_file)),
       store_(std::make_unique<JobStore>(config_.data_dir)),
       pool_(std::make_unique<WorkerPool>(workerSettings(config_), *store_, metrics_, *log_)),
+      // Each open event stream holds an HTTP thread: streams get at most half of them.
+      shadows_(std::make_unique<shadow::ShadowRegistry>(
+          kMaxShadows, static_cast<std::size_t>(std::max(1, config_.http_threads / 2)))),
       http_(httpSettings(config_), *log_, metrics_) {
   if (config_.example_machines) registerExampleMachines(*store_);
   addContractSchemas(http_);
   addOpsRoutes(http_, metrics_, [this] { return unready(); });
   addJobRoutes(http_, *store_, *pool_, config_);
   addMachineRoutes(http_, *store_);
+  addShadowRoutes(http_, *shadows_, *store_, config_);
+  metrics_.addGauge("mdhd_shadows_running", "Live shadows polling a machine.",
+                    [this] { return static_cast<double>(shadows_->running()); });
+  metrics_.addGauge("mdhd_shadow_streams", "Open shadow event streams.",
+                    [this] { return static_cast<double>(shadows_->streams()); });
   metrics_.addGauge("mdhd_jobs_queued", "Jobs waiting for a worker.",
                     [this] { return static_cast<double>(pool_->queued()); });
   metrics_.addGauge("mdhd_jobs_running", "Jobs on a worker now.",
@@ -81,7 +91,9 @@ void Service::start() {
 
 void Service::stop() {
   if (stopping_.exchange(true)) return;
-  // Requests first (nothing new is accepted), then the jobs in flight.
+  // Shadows first (their event streams end, so none holds an HTTP thread), then
+  // requests (nothing new is accepted), then the jobs in flight.
+  shadows_->stopAll();
   http_.stop();
   const auto grace =
       std::chrono::milliseconds(static_cast<std::int64_t>(config_.shutdown_grace_seconds * 1000.0));

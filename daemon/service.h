@@ -13,6 +13,7 @@
 #include "daemon/json_log.h"
 #include "daemon/metrics.h"
 #include "daemon/service_config.h"
+#include "daemon/shadow_registry.h"
 #include "daemon/worker_pool.h"
 
 namespace mdhd::service {
@@ -40,6 +41,7 @@ class Service {
   JsonLog& log() { return *log_; }
   JobStore& store() { return *store_; }
   WorkerPool& workers() { return *pool_; }
+  shadow::ShadowRegistry& shadows() { return *shadows_; }
 
  private:
   std::string unready() const;
@@ -49,6 +51,7 @@ class Service {
   Metrics metrics_;
   std::unique_ptr<JobStore> store_;
   std::unique_ptr<WorkerPool> pool_;
+  std::unique_ptr<shadow::ShadowRegistry> shadows_;
   HttpService http_;
   std::atomic<bool> stopping_{false};
   bool started_ = false;

@@ -58,9 +58,10 @@ void ShadowSession::start() {
 }
 
 void ShadowSession::stop() {
+  std::lock_guard once(stop_mutex_);  // two callers must not join the same threads
+  if (state_.load() == ShadowState::kStopped) return;
   {
     std::lock_guard lock(mutex_);
-    if (state_.load() == ShadowState::kStopped) return;
     stopping_ = true;
   }
   wake_.notify_all();
@@ -134,7 +135,10 @@ nlohmann::json ShadowSession::status() const {
         {"motions", c.motions},    {"merged", c.merged},   {"motion_errors", c.motion_errors},
         {"thinned", c.thinned},    {"backlog", c.backlog}, {"max_backlog", c.max_backlog},
         {"lag_ms", c.carve_lag_ms}};
-    j["lookahead"] = {{"enabled", track_ != nullptr && options_.lookahead}, {"runs", c.lookaheads}};
+    j["carving"]["pending"] = polled_ - carved_;  // polled, not cut yet
+    j["lookahead"] = {{"enabled", track_ != nullptr && options_.lookahead},
+                      {"runs", c.lookaheads},
+                      {"busy", ahead_busy_ || ahead_task_ != nullptr}};
     j["feed_hold"] = {{"enabled", spec_.map.feed_hold.enabled},
                       {"coil", spec_.map.feed_hold.coil},
                       {"writes", c.feed_hold_writes}};

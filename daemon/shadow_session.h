@@ -141,6 +141,7 @@ class ShadowSession {
   std::atomic<bool> hold_pending_{false};
   std::atomic<bool> stopping_{false};
   EventLog events_;
+  std::mutex stop_mutex_;
   std::thread poll_, carve_, ahead_;
   bool started_ = false;
 };
