@@ -72,7 +72,9 @@ void ShadowSession::pollLoop() {
     }
     next += period;
     const auto now = SteadyClock::now();
-    if (next < now - period) next = now;  // fell behind (a stall): no burst to catch up
+    // Late wake-ups are made up by polling at once; after a real stall (more than
+    // 20 periods behind) the rhythm starts again from now instead of bursting.
+    if (next < now - 20 * period) next = now;
     sleepUntil(next, stopping_);
   }
 }

@@ -9,6 +9,7 @@
 #include <condition_variable>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -55,6 +56,22 @@ class SseReader {
         if (pred(e)) return true;
       return false;
     });
+  }
+  // The n-th (1-based) event of `type`, waiting up to `limit` for it.
+  std::optional<ReceivedEvent> waitNth(const std::string& type, std::size_t n,
+                                       std::chrono::milliseconds limit) {
+    std::unique_lock lock(mutex_);
+    std::optional<ReceivedEvent> out;
+    changed_.wait_for(lock, limit, [&] {
+      std::size_t seen = 0;
+      for (const ReceivedEvent& e : events_)
+        if (e.type == type && ++seen == n) {
+          out = e;
+          return true;
+        }
+      return false;
+    });
+    return out;
   }
   // Waits until the server ends the stream.
   bool waitEnded(std::chrono::milliseconds limit) {
