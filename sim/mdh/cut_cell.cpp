@@ -13,6 +13,8 @@
 #include "sim/mdh/isolation_splits.h"
 #include "sim/mdh/rng.h"
 #include "sim/mdh/sample_grid.h"
+#include "sim/mdh/vertex_drops.h"
+#include "sim/mdh/vertex_rule.h"
 
 namespace mdhd::mdh {
 
@@ -95,7 +97,9 @@ void forEachVertexBeyondGap(const SampleGrid& g, Direction d, F&& f) {
 }
 
 // An unsplittable (one cube) cell that no direction holds: drop the fewest
-// solid vertices that make one direction hold it. A loss below one grid cube.
+// solid vertices that make one direction hold it. They are cut out as a
+// VertexDrops solid, here and (Stock::cut) in every other cell holding them,
+// so all of them agree; a loss of a sliver around each vertex.
 void forceFunctional(SampleGrid& g, const glm::dvec3& t, const CutContext& ctx) {
   int bestCount = -1;
   Direction best;
@@ -109,9 +113,18 @@ void forceFunctional(SampleGrid& g, const glm::dvec3& t, const CutContext& ctx) 
       best = d;
     }
   }
+  std::vector<std::array<int, 3>> drops;
+  const GridBox& b = g.box();
   forEachVertexBeyondGap(g, best, [&](std::size_t i) {
-    g.state(i) &= static_cast<std::uint8_t>(~SampleGrid::kSolid);
+    const int nx = g.size(0), ny = g.size(1);
+    const int x = static_cast<int>(i % nx), y = static_cast<int>(i / nx % ny),
+              z = static_cast<int>(i / nx / ny);
+    drops.push_back({b.lo[0] + x, b.lo[1] + y, b.lo[2] + z});
   });
+  const VertexDrops solid(ctx.grid, drops);
+  const IntervalCache cache(ctx.grid, solid);
+  g.applyCut(cache);
+  ctx.counters.dropped.insert(ctx.counters.dropped.end(), drops.begin(), drops.end());
   ctx.counters.forcedCells += 1;
   ctx.counters.forcedVertices += bestCount;
 }
@@ -168,7 +181,7 @@ void split(Cell& cell, const SplitCandidate& c, int plane, const CutContext& ctx
 void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
   const Direction old = cell.map->direction();
   SampleGrid g = SampleGrid::decode(*cell.map, cell.box);
-  g.applyCut(old.axis, ctx.cache);
+  g.applyCut(ctx.cache);
   if (fresh) ctx.counters.overhangEvents += 1;
   ctx.counters.touched = true;
   markUnresolved(g, old);
@@ -201,8 +214,8 @@ void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
   if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.cache.touched()).empty()) return;
   if (cell.state == CellState::kSolid) {
     // Probe first: most solid cells under the tool's box lose nothing.
+    if (!toolRemovesSomeVertex(cell.box, ctx.cache)) return;
     const Direction d = guessDirection(ctx.toolDirection);
-    if (!toolReachesSolid(cell.box, d.axis, ctx.cache)) return;
     cell.map = std::make_unique<ThreeMap>(cell.box, d, ctx.threeWay);
     cell.state = CellState::kPartial;
   }

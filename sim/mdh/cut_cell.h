@@ -18,6 +18,7 @@
 namespace mdhd::mdh {
 
 struct CutContext {
+  const GridSpec& grid;
   const IntervalCache& cache;
   const std::vector<Rule>& rules;
   bool threeWay = true;

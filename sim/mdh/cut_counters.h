@@ -2,6 +2,7 @@
 // What one cut did, counted per brick so parallel work merges in a fixed order.
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "sim/mdh/split_candidate.h"
 
@@ -15,6 +16,9 @@ struct CutCounters {
   std::int64_t forcedVertices = 0;
   double removed = 0.0;  // grid units^3
   bool touched = false;
+  // Vertices forced cells dropped: the other cells holding them drop them too
+  // (Stock::cut, vertex_drops.h).
+  std::vector<std::array<int, 3>> dropped;
 
   void add(const CutCounters& o) {
     for (int i = 0; i < kSplitTypes; ++i) splits[i] += o.splits[i];
@@ -24,6 +28,7 @@ struct CutCounters {
     forcedVertices += o.forcedVertices;
     removed += o.removed;
     touched |= o.touched;
+    dropped.insert(dropped.end(), o.dropped.begin(), o.dropped.end());
   }
 };
 

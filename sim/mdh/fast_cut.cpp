@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sim/mdh/line_segments.h"
+#include "sim/mdh/vertex_rule.h"
 
 namespace mdhd::mdh {
 
@@ -17,33 +18,6 @@ struct ColumnChange {
   double height;
 };
 
-// The column's height after the cut; false if it no longer is one solid run
-// from the heightmap's base face.
-bool cutColumn(const ThreeMap& m, double h, std::span<const Span> tool, std::vector<Span>& before,
-               std::vector<Span>& after, double& out) {
-  const int a = m.axis();
-  const double lo = m.box().lo[a], hi = m.box().hi[a];
-  const bool up = m.direction().sign > 0;
-  before.clear();
-  if (m.solidCount(h) > 0)
-    before.push_back(up ? Span{lo, std::min(h, hi)} : Span{std::max(h, lo), hi});
-  subtractOpen(before, tool, after);
-  const Span* run = nullptr;
-  int runs = 0;
-  for (const Span& s : after) {
-    if (s.hi - s.lo <= kZeroLength || std::ceil(s.lo) > std::floor(s.hi)) continue;  // no vertex
-    run = &s;
-    ++runs;
-  }
-  if (runs == 0) {
-    out = m.emptyHeight();
-    return true;
-  }
-  if (runs > 1 || (up ? run->lo > lo : run->hi < hi)) return false;
-  out = up ? run->hi : run->lo;
-  return true;
-}
-
 // Per-thread buffers, so a step allocates nothing once they have grown.
 struct Scratch {
   std::vector<ColumnChange> changes;
@@ -52,8 +26,81 @@ struct Scratch {
   std::vector<int> next;
   std::vector<Span> before, after, pieces;
   std::vector<double> heights, row, oldCrossings;
-  std::vector<std::uint8_t> changed;
+  std::vector<std::uint8_t> changed, was, now;
 };
+
+// One solid run from the base face: its far end is the column's new height.
+bool heightFromRuns(const ThreeMap& m, const std::vector<Span>& runs, double& out) {
+  const int a = m.axis();
+  const bool up = m.direction().sign > 0;
+  if (runs.empty()) {
+    out = m.emptyHeight();
+    return true;
+  }
+  const Span& run = runs.front();
+  if (runs.size() > 1 || (up ? run.lo > m.box().lo[a] : run.hi < m.box().hi[a])) return false;
+  out = up ? run.hi : run.lo;
+  return true;
+}
+
+// The column's height after the cut in a z map, whose lines are the ones
+// vertex_rule.h decides on; false if it no longer is one solid run from the
+// base face. A vertex the tool does not hold strictly inside stays, even as a
+// solid of zero length: every other cell holding it keeps it too.
+bool cutZColumn(const ThreeMap& m, double h, std::span<const Span> tool, Scratch& s, double& out) {
+  const int a = m.axis();
+  const double lo = m.box().lo[a], hi = m.box().hi[a];
+  const bool up = m.direction().sign > 0;
+  s.before.clear();
+  if (m.solidCount(h) > 0)
+    s.before.push_back(up ? Span{lo, std::min(h, hi)} : Span{std::max(h, lo), hi});
+  subtractOpen(s.before, tool, s.after);
+  s.pieces.clear();
+  for (const Span& p : s.after)
+    if (std::ceil(p.lo) <= std::floor(p.hi)) s.pieces.push_back(p);  // holds a vertex
+  return heightFromRuns(m, s.pieces, out);
+}
+
+// The same in an x or y map: the vertex states come from the z lines through
+// them (vertex_rule.h), the new height is the crossing of the top edge as
+// every cell holding that edge computes it.
+bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
+                   const std::array<int, 3>& base, const IntervalCache& cache, Scratch& s,
+                   double& out) {
+  const int a = m.axis(), n = m.levels(), lo = m.box().lo[a];
+  const bool up = m.direction().sign > 0;
+  const GridBox& reach = cache.touched();
+  s.was.resize(n);
+  s.now.resize(n);
+  bool changed = false;
+  std::array<int, 3> p = base;
+  for (int k = 0; k < n; ++k) {
+    s.was[k] = s.now[k] = m.solidAt(h, lo + k);
+    if (!s.was[k] || lo + k < reach.lo[a] || lo + k > reach.hi[a]) continue;
+    p[a] = lo + k;
+    if (toolRemovesVertex(cache, p)) s.now[k] = 0, changed = true;
+  }
+  if (!changed && tool.empty()) {
+    out = h;
+    return true;
+  }
+  // Solid vertices counted from the base face must be all of them.
+  int count = 0;
+  while (count < n && s.now[up ? count : n - 1 - count]) ++count;
+  for (int k = count; k < n; ++k)
+    if (s.now[up ? k : n - 1 - k]) return false;
+  if (count == 0) {
+    out = m.emptyHeight();
+  } else if (count == n) {
+    out = m.fullHeight();
+  } else {
+    const int e = up ? count - 1 : n - 1 - count;  // the edge (lo + e, lo + e + 1) crosses
+    const bool o0 = s.was[e], o1 = s.was[e + 1];
+    out = edgeCrossingAfterCut(o0, o1, o0 != o1 ? h : std::nan(""), s.now[e], s.now[e + 1], lo + e,
+                               tool, s.pieces);
+  }
+  return true;
+}
 
 // Rebuilds one row of embedded heights; `heights` are the row's new parent
 // heights, `changed` marks the columns that moved. Edges in [e0, e1) lie in
@@ -181,11 +228,16 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
     for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
       const auto tool = cache.line(a, cu, cv);
-      if (tool.empty()) continue;
+      if (tool.empty() && a == 2) continue;
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
       const double h = map.height(iu, iv);
       double nh = 0.0;
-      if (!cutColumn(map, h, tool, s.before, s.after, nh)) return FastCut::kOverhang;
+      std::array<int, 3> base{};
+      base[u] = cu;
+      base[v] = cv;
+      const bool ok = a == 2 ? cutZColumn(map, h, tool, s, nh)
+                             : cutSideColumn(map, h, tool, base, cache, s, nh);
+      if (!ok) return FastCut::kOverhang;
       if (!(nh == h)) s.changes.push_back({iu, iv, nh});
     }
   if (s.changes.empty() && !map.threeWay()) return FastCut::kUnchanged;
@@ -236,18 +288,6 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
   for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
   volumeDelta += delta;
   return FastCut::kDone;
-}
-
-bool toolReachesSolid(const GridBox& box, int axis, const IntervalCache& cache) {
-  const GridBox region = box.intersect(cache.touched());
-  if (region.empty()) return false;
-  const int u = axisU(axis), v = axisV(axis);
-  const double lo = box.lo[axis], hi = box.hi[axis];
-  for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
-    for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu)
-      for (const Span& t : cache.line(axis, cu, cv))
-        if (std::min(t.hi, hi) - std::max(t.lo, lo) > kZeroLength) return true;
-  return false;
 }
 
 }  // namespace mdhd::mdh

@@ -16,7 +16,4 @@ enum class FastCut { kUnchanged, kDone, kOverhang };
 // on kOverhang the map is untouched.
 FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta);
 
-// Whether the tool removes any length from the lines along `axis` through a solid box.
-bool toolReachesSolid(const GridBox& box, int axis, const IntervalCache& cache);
-
 }  // namespace mdhd::mdh

@@ -49,22 +49,12 @@ void segmentsFromSamples(int first, std::span<const std::uint8_t> solid,
   }
 }
 
-void samplesFromSegments(std::span<const Span> segments, int first, int n,
-                         std::vector<std::uint8_t>& solid, std::vector<double>& crossing) {
-  solid.assign(n, 0);
-  crossing.assign(n > 0 ? n - 1 : 0, std::nan(""));
-  for (const Span& s : segments) {
-    // A solid of zero length (a tool face lying on a grid plane, two tool
-    // intervals meeting at a vertex) has no volume; keeping its vertex would
-    // leave a cell a one-point layer no heightmap direction can hold.
-    if (s.hi - s.lo <= kZeroLength) continue;
-    const int a = std::max(0, static_cast<int>(std::ceil(s.lo)) - first);
-    const int b = std::min(n - 1, static_cast<int>(std::floor(s.hi)) - first);
-    if (a > b) continue;  // a sliver between two vertices: below the grid's resolution
-    for (int k = a; k <= b; ++k) solid[k] = 1;
-    if (a > 0) crossing[a - 1] = s.lo;
-    if (b < n - 1) crossing[b] = s.hi;
+bool strictlyInside(std::span<const Span> tool, double x) {
+  for (const Span& t : tool) {
+    if (t.lo >= x) return false;
+    if (x < t.hi) return true;
   }
+  return false;
 }
 
 double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k,
@@ -84,12 +74,14 @@ double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k
     subtractOpen(std::span<const Span>(&before, 1), tool, pieces);
   else
     pieces.clear();
+  // The crossing lies in [k, k+1) when k is solid, in (k, k+1] when k+1 is.
+  const double lo = n0 ? double(k) : std::nextafter(double(k), double(k + 1));
+  const double hi = n0 ? std::nextafter(double(k + 1), double(k)) : double(k + 1);
   for (const Span& s : pieces) {
-    if (n0 && !n1 && s.lo <= k) return std::clamp(s.hi, double(k), double(k + 1));
-    if (!n0 && n1 && s.hi >= k + 1) return std::clamp(s.lo, double(k), double(k + 1));
+    if (n0 && !n1 && s.lo <= k) return std::clamp(s.hi, lo, hi);
+    if (!n0 && n1 && s.hi >= k + 1) return std::clamp(s.lo, lo, hi);
   }
-  if (o0 != o1) return std::clamp(oc, double(k), double(k + 1));
-  return k + 0.5;
+  return n0 ? lo : hi;
 }
 
 }  // namespace mdhd::mdh

@@ -24,19 +24,19 @@ void subtractOpen(std::span<const Span> segments, std::span<const Span> tool,
 void segmentsFromSamples(int first, std::span<const std::uint8_t> solid,
                          std::span<const double> crossing, std::vector<Span>& out);
 
-// Segments shorter than this (grid units) are dropped when encoding.
-inline constexpr double kZeroLength = 1e-9;
-
-// Encodes segments into vertex states and crossings for vertices first..first+n-1.
-void samplesFromSegments(std::span<const Span> segments, int first, int n,
-                         std::vector<std::uint8_t>& solid, std::vector<double>& crossing);
+// Whether x lies strictly inside one of the open tool intervals (sorted, disjoint).
+bool strictlyInside(std::span<const Span> tool, double x);
 
 // Where the surface crosses the grid edge [k, k+1] of a line after a cut,
-// given the end states before (o0, o1) and after (n0, n1), the crossing
-// before (oc, if o0 != o1) and the tool's open intervals along the line.
-// The end states come from another family of lines; when this line's
-// intervals disagree (a tangency within rounding) the old crossing or the
-// edge midpoint is kept. `pieces` is scratch space.
+// given the end states before (o0, o1) and after (n0, n1, which must differ),
+// the crossing before (oc, if o0 != o1) and the tool's open intervals along
+// the line: the end of what is left of the edge's solid next to its solid
+// end. Every cell holding the edge computes its crossing here, whatever its
+// direction, so they all store the same number. When the line's intervals
+// disagree with the end states (these may come from another line, a tangency
+// within rounding) the surface is put at the solid end. The result lies in
+// [solid end, empty end): a parent height and an embedded height of the same
+// edge are then the same number. `pieces` is scratch space.
 double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k,
                             std::span<const Span> tool, std::vector<Span>& pieces);
 

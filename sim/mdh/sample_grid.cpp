@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "sim/mdh/line_segments.h"
+#include "sim/mdh/vertex_rule.h"
 
 namespace mdhd::mdh {
 
@@ -79,41 +80,26 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
   return g;
 }
 
-void SampleGrid::applyCut(int primary, const IntervalCache& cache) {
+void SampleGrid::applyCut(const IntervalCache& cache) {
   for (auto& s : state_) s = static_cast<std::uint8_t>((s & kSolid) ? (kSolid | kWasSolid) : 0);
-  const int pu = axisU(primary), pv = axisV(primary);
-  const int n = n_[primary];
-  const std::size_t st = stride(primary);
-  std::vector<std::uint8_t> solid(n);
-  std::vector<double> cross(n > 0 ? n - 1 : 0);
-  std::vector<Span> before, after;
-  for (int cv = box_.lo[pv]; cv <= box_.hi[pv]; ++cv) {
-    for (int cu = box_.lo[pu]; cu <= box_.hi[pu]; ++cu) {
-      const auto tool = cache.line(primary, cu, cv);
-      if (tool.empty()) continue;
-      const std::size_t i0 = index(vertex(primary, box_.lo[primary], cu, cv));
-      for (int k = 0; k < n; ++k) {
-        solid[k] = state_[i0 + k * st] & kSolid;
-        if (k + 1 < n) cross[k] = cross_[primary][i0 + k * st];
+  // Vertex states: the rule every cell applies (vertex_rule.h).
+  const GridBox reach = box_.intersect(cache.touched());
+  if (!reach.empty())
+    for (int y = reach.lo[1]; y <= reach.hi[1]; ++y)
+      for (int x = reach.lo[0]; x <= reach.hi[0]; ++x) {
+        const auto zLine = cache.line(2, x, y);
+        if (zLine.empty()) continue;
+        for (int z = reach.lo[2]; z <= reach.hi[2]; ++z) {
+          std::uint8_t& s = state_[index(x, y, z)];
+          if ((s & kSolid) && toolRemovesVertex(zLine, z)) s &= static_cast<std::uint8_t>(~kSolid);
+        }
       }
-      segmentsFromSamples(box_.lo[primary], solid, cross, before);
-      subtractOpen(before, tool, after);
-      samplesFromSegments(after, box_.lo[primary], n, solid, cross);
-      for (int k = 0; k < n; ++k) {
-        std::uint8_t& s = state_[i0 + k * st];
-        if ((s & kSolid) != solid[k]) changed_ = true;
-        s = static_cast<std::uint8_t>((s & ~kSolid) | solid[k]);
-      }
-      for (int k = 0; k + 1 < n; ++k) {
-        const bool differ = solid[k] != solid[k + 1];
-        double& c = cross_[primary][i0 + k * st];
-        if (differ && c != cross[k]) changed_ = true;
-        c = differ ? cross[k] : kNaN;
-      }
-    }
-  }
+  for (std::size_t i = 0; i < state_.size(); ++i)
+    if (bool(state_[i] & kSolid) != bool(state_[i] & kWasSolid)) changed_ = true;
+  // Crossings, edge by edge in all three families (the same function every
+  // cell holding an edge uses).
   std::vector<Span> pieces;
-  for (int x : {pu, pv}) {
+  for (int x = 0; x < 3; ++x) {
     const int xu = axisU(x), xv = axisV(x);
     const std::size_t sx = stride(x);
     for (int cv = box_.lo[xv]; cv <= box_.hi[xv]; ++cv) {
@@ -127,6 +113,7 @@ void SampleGrid::applyCut(int primary, const IntervalCache& cache) {
           const bool o0 = s0 & kWasSolid, o1 = s1 & kWasSolid;
           double& c = cross_[x][i];
           if (n0 == n1) {
+            if (!std::isnan(c)) changed_ = true;
             c = kNaN;
             continue;
           }

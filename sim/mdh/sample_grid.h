@@ -44,10 +44,9 @@ class SampleGrid {
   double& crossing(int axis, std::size_t i) { return cross_[axis][i]; }
   double crossing(int axis, std::size_t i) const { return cross_[axis][i]; }
 
-  // Subtracts the step's tool. The `primary` axis decides which vertices the
-  // tool removes (its lines must span the whole cell); the other two axes only
-  // place the crossings on their edges.
-  void applyCut(int primary, const IntervalCache& cache);
+  // Subtracts the step's tool: vertex states by vertex_rule.h, then every
+  // edge of all three families gets its crossing from edgeCrossingAfterCut.
+  void applyCut(const IntervalCache& cache);
   bool changed() const { return changed_; }
 
   // Whether every line along d.axis is solid-then-empty for d (a heightmap can hold it).

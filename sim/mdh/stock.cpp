@@ -11,6 +11,7 @@
 #include "sim/mdh/cut_cell.h"
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/rng.h"
+#include "sim/mdh/vertex_drops.h"
 #include "sim/mdh/worker_pool.h"
 
 namespace mdhd::mdh {
@@ -87,8 +88,29 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
     tool_direction = {0.0, 0.0, 1.0};
   CutResult result;
   const IntervalCache cache(grid_, solid, lines_.get());
+  if (cache.touched().empty()) return result;
+  CutCounters step = cutBricks(cache, tool_direction);
+  // Vertices forced cells dropped are cut out of every other cell holding
+  // them (which may force more): neighbours keep one state per vertex.
+  for (std::vector<std::array<int, 3>> dropped; !step.dropped.empty();) {
+    dropped.swap(step.dropped);
+    step.dropped.clear();
+    const VertexDrops drops(grid_, dropped);
+    const IntervalCache dropCache(grid_, drops);
+    step.add(cutBricks(dropCache, tool_direction));
+  }
+  totals_.add(step);
+  const double h3 = grid_.h * grid_.h * grid_.h;
+  result.removed_volume = step.removed * h3;
+  result.touched = step.touched;
+  result.overhang_events = step.overhangEvents;
+  result.overhang = step.overhangEvents > 0;
+  for (auto s : step.splits) result.splits += s;
+  return result;
+}
+
+CutCounters Stock::cutBricks(const IntervalCache& cache, const glm::dvec3& tool_direction) {
   const GridBox& t = cache.touched();
-  if (t.empty()) return result;
   std::vector<int> items;
   std::array<int, 3> first{}, last{};
   for (int a = 0; a < 3; ++a) {
@@ -100,7 +122,8 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
       for (int x = first[0]; x <= last[0]; ++x) items.push_back(brickIndex({x, y, z}));
   std::vector<CutCounters> counters(items.size());
   const std::function<void(std::size_t)> work = [&](std::size_t i) {
-    const CutContext ctx{cache,
+    const CutContext ctx{grid_,
+                         cache,
                          options_.ruleset,
                          options_.three_way,
                          tool_direction,
@@ -121,14 +144,7 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
   }
   CutCounters step;
   for (const CutCounters& c : counters) step.add(c);  // fixed order: identical sums
-  totals_.add(step);
-  const double h3 = grid_.h * grid_.h * grid_.h;
-  result.removed_volume = step.removed * h3;
-  result.touched = step.touched;
-  result.overhang_events = step.overhangEvents;
-  result.overhang = step.overhangEvents > 0;
-  for (auto s : step.splits) result.splits += s;
-  return result;
+  return step;
 }
 
 void Stock::checkInvariants() const {

@@ -21,6 +21,8 @@
 
 namespace mdhd::mdh {
 
+class IntervalCache;
+
 struct StockOptions {
   double density = 10.0;  // grid points per mm
   bool three_way = true;
@@ -102,6 +104,8 @@ class Stock {
   struct CloneTag {};
   Stock(const Stock& other, CloneTag);
   const Cell* leafAt(const glm::dvec3& g) const;
+  // One pass of a step over the bricks the cache reaches, on the workers.
+  CutCounters cutBricks(const IntervalCache& cache, const glm::dvec3& toolDirection);
   // Solid segments (grid units, merged across cells) of one grid line.
   void gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const;
 

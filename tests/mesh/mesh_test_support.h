@@ -16,6 +16,7 @@
 #include "sim/mdh/stock.h"
 #include "sim/mesh/indexed_mesh.h"
 #include "sim/mesh/mesher.h"
+#include "tests/mdh/random_tool_moves.h"
 
 namespace mdhd::mesh::testing {
 
@@ -55,17 +56,9 @@ class Block final : public geom::LineSolid {
   glm::dvec3 lo_, hi_;
 };
 
+// A cutter of the given shape and diameter (flutes 4 d, shank as thick).
 inline geom::ToolPart toolPart(geom::ToolShape shape, double diameter) {
-  geom::Tool t;
-  t.number = 1;
-  t.shape = shape;
-  t.diameter = diameter;
-  t.flute_length = 4 * diameter;
-  t.length = 10 * diameter;
-  t.shank_diameter = diameter;
-  if (shape == geom::ToolShape::kBull) t.corner_radius = diameter / 4;
-  if (shape == geom::ToolShape::kDrill) t.tip_angle = 118.0;
-  return geom::makeToolPart(t, geom::ToolPartKind::kCutter);
+  return mdh::testing::cutterPart(shape, diameter);
 }
 
 inline glm::dvec3 tilted(double degrees, const glm::dvec3& towards) {

@@ -90,9 +90,11 @@ TEST(ExampleJobs, SideDrillHoleWithOverhang) {
   const double area = machinedArea(m.mesh);
   EXPECT_NEAR(area, 2 * testing::kPi * 4 * 15 + testing::kPi * 16, 0.02 * area);
   EXPECT_NEAR(enclosedVolume(m.mesh), 40 * 40 * 30 - removed, 0.02 * area * h);
-  // The engine's Coons-patch volume is the coarser of the two here (1.6 mm^3
-  // off the mesh, 2.6 off the analytic value, at area x h = 106 mm^3).
-  EXPECT_NEAR(enclosedVolume(m.mesh), stock.volume(), 0.02 * area * h);
+  // The engine's Coons-patch volume is the coarser of the two here (1.7 mm^3
+  // off the analytic value, the mesh 0.4, at area x h = 106 mm^3): each within
+  // its own discretisation error.
+  EXPECT_NEAR(stock.volume(), 40 * 40 * 30 - removed, 0.02 * area * h);
+  EXPECT_NEAR(enclosedVolume(m.mesh), stock.volume(), 0.03 * area * h);
   // The overhang: machined triangles facing down (the hole's upper half).
   double down = 0.0;
   for (std::size_t i = 0; i < m.mesh.triangles().size(); ++i) {

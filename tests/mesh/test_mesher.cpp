@@ -85,7 +85,10 @@ TEST(Mesher, SideDrillOverhangIsClosedAndHoldsTheHole) {
     expectWatertight(m);
     const double hole = testing::kPi * 0.8 * 0.8 * 1.5;
     EXPECT_NEAR(enclosedVolume(m.mesh), 64.0 - hole, 0.03 * hole) << threeWay;
-    EXPECT_NEAR(enclosedVolume(m.mesh), stock.volume(), 0.02 * hole) << threeWay;
+    // The engine's Coons sum and the mesh each carry their own discretisation
+    // error (the tool's end face lies on the grid plane y = 2.5).
+    EXPECT_NEAR(stock.volume(), 64.0 - hole, 0.03 * hole) << threeWay;
+    EXPECT_NEAR(enclosedVolume(m.mesh), stock.volume(), 0.03 * hole) << threeWay;
   }
 }
 

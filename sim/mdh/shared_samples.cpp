@@ -1,0 +1,128 @@
+#include "sim/mdh/shared_samples.h"
+
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <unordered_map>
+
+namespace mdhd::mdh {
+
+bool leafSolidAt(const LeafView& leaf, const GridPoint& p) {
+  if (leaf.state != CellState::kPartial || leaf.map == nullptr)
+    return leaf.state == CellState::kSolid;
+  const ThreeMap& m = *leaf.map;
+  const GridBox& b = m.box();
+  return m.solidAt(m.height(p[m.uAxis()] - b.lo[m.uAxis()], p[m.vAxis()] - b.lo[m.vAxis()]),
+                   p[m.axis()]);
+}
+
+double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* sampled) {
+  const double none = std::nan("");
+  if (sampled) *sampled = true;
+  if (leaf.state != CellState::kPartial || leaf.map == nullptr) return none;
+  const ThreeMap& m = *leaf.map;
+  // A plain heightmap's parent heights may come from interpolated crossings
+  // (a resample), so none of its crossings is a sample another cell shares.
+  if (sampled) *sampled = m.threeWay();
+  const GridBox& b = m.box();
+  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+  if (axis == a) {
+    const double h = m.height(p[u] - b.lo[u], p[v] - b.lo[v]);
+    return m.solidAt(h, p[a]) != m.solidAt(h, p[a] + 1) ? h : none;
+  }
+  const int family = axis == u ? 0 : 1;
+  const int r = family == 0 ? p[v] - b.lo[v] : p[u] - b.lo[u];
+  const int edge = p[axis] - b.lo[axis];
+  std::size_t pos = 0;
+  for (int e = 0;; ++e) {
+    const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
+    int first = 0, count = 0;
+    m.straddle(h0, h1, first, count);
+    if (e < edge) {
+      pos += count;
+      continue;
+    }
+    const int k = p[a];
+    if (k < first || k >= first + count) return none;
+    if (!m.threeWay()) return m.interpolatedCrossing(h0, h1, p[axis], k);
+    return m.row(family, r)[pos + static_cast<std::size_t>(k - first)];
+  }
+}
+
+std::string SampleDisagreement::describe() const {
+  auto box = [](const GridBox& g) {
+    std::ostringstream s;
+    s << "[" << g.lo[0] << "," << g.lo[1] << "," << g.lo[2] << "]-[" << g.hi[0] << "," << g.hi[1]
+      << "," << g.hi[2] << "]";
+    return s.str();
+  };
+  std::ostringstream s;
+  s.precision(17);
+  if (axis < 0)
+    s << "vertex";
+  else
+    s << "edge along "
+      << "xyz"[axis] << " from";
+  s << " (" << vertex[0] << "," << vertex[1] << "," << vertex[2] << "): leaf " << box(first)
+    << " says " << firstValue << ", leaf " << box(second) << " says " << secondValue;
+  return s.str();
+}
+
+namespace {
+
+struct Said {
+  GridBox box;
+  double value;
+  bool sampled;
+};
+
+bool same(double x, double y) {
+  return (std::isnan(x) && std::isnan(y)) || x == y;
+}
+
+}  // namespace
+
+std::vector<SampleDisagreement> sharedSampleDisagreements(const Stock& stock, std::size_t limit) {
+  const GridBox all = stock.grid().all();
+  const std::uint64_t nx = all.hi[0] + 1, ny = all.hi[1] + 1;
+  auto key = [&](const GridPoint& p, int slot) {
+    return ((p[0] + nx * (p[1] + ny * std::uint64_t(p[2]))) << 2) | std::uint64_t(slot);
+  };
+  std::unordered_map<std::uint64_t, Said> seen;
+  std::vector<SampleDisagreement> out;
+  auto record = [&](const LeafView& leaf, const GridPoint& p, int axis, double value,
+                    bool sampled) {
+    const auto [it, fresh] =
+        seen.try_emplace(key(p, axis < 0 ? 3 : axis), leaf.box, value, sampled);
+    if (fresh || it->second.box == leaf.box || out.size() >= limit) return;
+    const Said& s = it->second;
+    // Interpolated crossings (plain heightmaps) need only agree on being there.
+    const bool agree =
+        (sampled && s.sampled) ? same(s.value, value) : std::isnan(s.value) == std::isnan(value);
+    if (!agree) out.push_back({p, axis, s.box, leaf.box, s.value, value});
+  };
+  stock.forEachLeaf([&](const LeafView& leaf) {
+    const GridBox& b = leaf.box;
+    for (int f = 0; f < 3; ++f) {
+      const int u = axisU(f), v = axisV(f);
+      for (int side : {b.lo[f], b.hi[f]}) {
+        GridPoint p{};
+        p[f] = side;
+        for (p[v] = b.lo[v]; p[v] <= b.hi[v]; ++p[v])
+          for (p[u] = b.lo[u]; p[u] <= b.hi[u]; ++p[u]) {
+            record(leaf, p, -1, leafSolidAt(leaf, p) ? 1.0 : 0.0, true);
+            for (int e : {u, v}) {
+              if (p[e] == b.hi[e]) continue;
+              bool sampled = true;
+              const double c = leafCrossingAt(leaf, p, e, &sampled);
+              record(leaf, p, e, c, sampled);
+            }
+          }
+        if (b.lo[f] == b.hi[f]) break;
+      }
+    }
+  });
+  return out;
+}
+
+}  // namespace mdhd::mdh

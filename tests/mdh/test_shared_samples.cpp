@@ -1,0 +1,92 @@
+// Neighbouring leaves agree on what they share: every grid vertex on a common
+// boundary has one state and every grid edge there one crossing, whatever
+// the tools, directions, splits, bricks and forced cells (engine guarantee
+// the mesher relies on).
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "bench/mesh/donut_surface.h"
+#include "sim/mdh/shared_samples.h"
+#include "sim/mdh/stock.h"
+#include "tests/mdh/random_tool_moves.h"
+
+namespace mdhd::mdh {
+namespace {
+
+const geom::Aabb kBox{{0, 0, 0}, {6, 6, 4}};
+
+struct Case {
+  std::uint32_t seed;
+  bool threeWay;
+  int brick;
+  double density;
+};
+
+// Random 5-axis moves from every side with every tool shape; after each one
+// the shared samples must agree. Returns the vertices forced cells dropped.
+std::int64_t cutAndCheck(const Case& c, int count) {
+  StockOptions o;
+  o.density = c.density;
+  o.three_way = c.threeWay;
+  o.brick = c.brick;
+  o.threads = 1;
+  o.seed = c.seed;
+  Stock stock(kBox, o);
+  testing::RandomToolMoves moves(c.seed, kBox);
+  for (int i = 0; i < count; ++i) {
+    const testing::ToolMove m = moves.next();
+    stock.setToolRadius(0.4);
+    stock.cut(m.sweep, m.direction);
+    const auto bad = sharedSampleDisagreements(stock, 4);
+    for (const auto& d : bad) ADD_FAILURE() << "after move " << i << ": " << d.describe();
+    if (!bad.empty()) break;
+  }
+  const Stats s = stock.stats();
+  std::printf("seed %u 3way %d brick %d density %g: leaves %lld splits %lld forced %lld\n", c.seed,
+              c.threeWay, c.brick, c.density, (long long)s.leaves, (long long)s.splits(),
+              (long long)s.forcedVertices);
+  return s.forcedVertices;
+}
+
+class SharedSamples : public ::testing::TestWithParam<Case> {};
+
+TEST_P(SharedSamples, NeighboursAgreeAfterEveryMove) {
+  cutAndCheck(GetParam(), 10);
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  const int bricks[] = {0, 8, 32, 8, 0, 16};
+  for (std::uint32_t seed = 1; seed <= 6; ++seed)
+    for (bool threeWay : {true, false})
+      out.push_back({seed, threeWay, bricks[seed - 1], seed % 2 ? 8.0 : 5.0});
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, SharedSamples, ::testing::ValuesIn(cases()));
+
+// Forced one-cube cells drop vertices their neighbours hold (sub-grid
+// features): the drops reach every neighbour.
+TEST(SharedSamples, ForcedDropsReachTheNeighbours) {
+  EXPECT_GT(cutAndCheck({4, true, 8, 5.0}, 10), 0);
+  EXPECT_GT(cutAndCheck({4, false, 8, 5.0}, 10), 0);
+}
+
+// The donut of thesis figure 6.13 at density 4: its groove is about one cell
+// wide, so cells are forced there; plain heightmaps and 3-maps.
+TEST(SharedSamples, DonutAtDensityFour) {
+  for (bool threeWay : {true, false}) {
+    StockOptions o;
+    o.density = 4;
+    o.three_way = threeWay;
+    o.threads = 2;
+    Stock stock({{0, 0, 0}, {4, 4, 1}}, o);
+    mesh::bench::cutDonut(stock, mesh::bench::Donut{}, 100, 10);
+    EXPECT_GT(stock.stats().forcedVertices, 0) << threeWay;
+    for (const auto& d : sharedSampleDisagreements(stock, 4)) ADD_FAILURE() << d.describe();
+  }
+}
+
+}  // namespace
+}  // namespace mdhd::mdh
