@@ -35,7 +35,6 @@ TEST(Mesher, SphereCutFromTheTop) {
   const auto m = meshOf(stock);
   expectWatertight(m);
   EXPECT_NEAR(enclosedVolume(m.mesh), stock.volume(), 0.01);
-  EXPECT_EQ(m.stats.fallbackCrossings, 0);
 }
 
 TEST(Mesher, GridAlignedPocketHasFlatWalls) {
@@ -100,7 +99,6 @@ TEST(Mesher, PlainHeightmapStockIsClosedToo) {
   stock.cut(geom::SweptVolume::between(part, {{1, 1, 2.2}, up}, {{5, 4, 1.6}, up}, 0, 0.01), up);
   const auto m = meshOf(stock);
   expectWatertight(m);
-  EXPECT_EQ(m.stats.fallbackCrossings, 0);  // one direction: the cells agree
   EXPECT_NEAR(enclosedVolume(m.mesh), stock.volume(), 0.01 * surfaceArea(m.mesh) * 0.1);
 }
 
