@@ -14,7 +14,8 @@ constexpr const char* kUsage =
     "usage: mdhd serve [--config FILE] [--bind ADDR] [--port P] [--data-dir DIR]\n"
     "                  [--token T]... [--workers N] [--http-threads N] [--queue-limit N]\n"
     "                  [--max-body-bytes N] [--max-program-bytes N] [--max-job-seconds S]\n"
-    "                  [--shutdown-grace-seconds S] [--log-file FILE] [--no-example-machines]\n"
+    "                  [--shutdown-grace-seconds S] [--max-interruptions N] [--log-file FILE]\n"
+    "                  [--no-example-machines]\n"
     "Settings: embedded defaults < config file < MDHD_* environment < flags (docs/daemon.md).\n";
 
 }  // namespace

@@ -1,6 +1,11 @@
 #include "daemon/job_store.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <random>
+#include <stdexcept>
 
 #include "daemon/json_log.h"
 
@@ -18,6 +23,7 @@ CREATE TABLE IF NOT EXISTS jobs (
   started_at TEXT,
   finished_at TEXT,
   attempts INTEGER NOT NULL DEFAULT 0,
+  interrupted INTEGER NOT NULL DEFAULT 0,
   report TEXT,
   mesh INTEGER NOT NULL DEFAULT 0
 );
@@ -31,7 +37,8 @@ CREATE TABLE IF NOT EXISTS flags (key TEXT PRIMARY KEY);
 )sql";
 
 constexpr const char* kJobColumns =
-    "seq, id, status, machine_name, created_at, started_at, finished_at, attempts, report, mesh";
+    "seq, id, status, machine_name, created_at, started_at, finished_at, attempts, report, mesh, "
+    "interrupted";
 
 JobRecord readJob(const Statement& s) {
   JobRecord r;
@@ -45,6 +52,7 @@ JobRecord readJob(const Statement& s) {
   r.attempts = static_cast<int>(s.integer(7));
   r.report = s.optionalText(8);
   r.mesh = s.integer(9) != 0;
+  r.interrupted = static_cast<int>(s.integer(10));
   return r;
 }
 
@@ -56,11 +64,25 @@ std::filesystem::path prepareDir(const std::filesystem::path& dir) {
 }  // namespace
 
 JobStore::JobStore(const std::filesystem::path& dir)
-    : dir_(prepareDir(dir)), db_((dir / "mdhd.sqlite3").string()) {
+    : dir_(prepareDir(dir)), lock_(dir_), db_((dir / "mdhd.sqlite3").string()) {
   db_.exec("PRAGMA journal_mode=WAL");
   // FULL: a commit (the 202 of an accepted job) survives power loss, not only a crash.
   db_.exec("PRAGMA synchronous=FULL");
   db_.exec(kSchema);
+}
+
+JobStore::FolderLock::FolderLock(const std::filesystem::path& dir) {
+  const std::filesystem::path path = dir / "lock";
+  fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+  if (fd < 0) throw std::runtime_error("cannot open " + path.string());
+  if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    close(fd);
+    throw std::runtime_error("another mdhd serve is using the data folder " + dir.string());
+  }
+}
+
+JobStore::FolderLock::~FolderLock() {
+  close(fd);
 }
 
 void JobStore::insertJob(const std::string& id, const std::string& jobJson,
@@ -78,7 +100,7 @@ std::optional<JobRecord> JobStore::job(const std::string& id, bool withJobText) 
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   JobRecord r = readJob(s);
-  if (withJobText) r.job = s.text(10);
+  if (withJobText) r.job = s.text(11);
   return r;
 }
 
@@ -130,10 +152,18 @@ bool JobStore::deleteJob(const std::string& id) {
   return removed;
 }
 
-std::vector<std::string> JobStore::recoverQueued() {
+std::vector<std::string> JobStore::recoverQueued(int maxInterruptions,
+                                                 const std::string& failedReport) {
   const std::lock_guard<std::mutex> lock(mutex_);
   Transaction t(db_);
-  db_.exec("UPDATE jobs SET status = 'queued', started_at = NULL WHERE status = 'running'");
+  db_.exec(
+      "UPDATE jobs SET status = 'queued', started_at = NULL, interrupted = interrupted + 1 "
+      "WHERE status = 'running'");
+  Statement poisoned(db_,
+                     "UPDATE jobs SET status = 'failed', finished_at = ?, report = ? "
+                     "WHERE status = 'queued' AND interrupted >= ?");
+  poisoned.bind(1, utcTimestamp()).bind(2, failedReport);
+  poisoned.bind(3, static_cast<std::int64_t>(maxInterruptions)).run();
   Statement s(db_, "SELECT id FROM jobs WHERE status = 'queued' ORDER BY seq");
   std::vector<std::string> ids;
   while (s.step()) ids.push_back(s.text(0));

@@ -24,6 +24,7 @@ struct JobRecord {
   std::string started_at;
   std::string finished_at;
   int attempts = 0;                   // times a worker started it
+  int interrupted = 0;                // times the process died while it ran
   std::optional<std::string> report;  // JSON text, when done or failed
   bool mesh = false;
   std::string job;  // the job JSON text (machine inlined), when asked for
@@ -38,7 +39,10 @@ struct MachineRecord {
 class JobStore {
  public:
   // Opens or creates `dir`/mdhd.sqlite3 and `dir`/meshes. Throws on failure.
+  // Throws when another process holds the folder (one service per data folder).
   explicit JobStore(const std::filesystem::path& dir);
+  JobStore(const JobStore&) = delete;
+  JobStore& operator=(const JobStore&) = delete;
 
   // A new queued job, committed when this returns.
   void insertJob(const std::string& id, const std::string& jobJson, const std::string& machineName);
@@ -53,9 +57,11 @@ class JobStore {
   void requeue(const std::string& id);
   // Removes a job and its mesh; false when there was none.
   bool deleteJob(const std::string& id);
-  // On start: jobs left running by a dead process are queued again. Returns
-  // every queued job id, oldest first.
-  std::vector<std::string> recoverQueued();
+  // On start: jobs left running by a dead process are queued again, unless they
+  // have now been interrupted `maxInterruptions` times: those (a job that brings
+  // the process down would otherwise do it forever) fail with `failedReport`.
+  // Returns every queued job id, oldest first.
+  std::vector<std::string> recoverQueued(int maxInterruptions, const std::string& failedReport);
   std::int64_t countByStatus(const std::string& status);
 
   std::filesystem::path meshPath(const std::string& id) const;
@@ -71,7 +77,18 @@ class JobStore {
   void setFlag(const std::string& key);
 
  private:
+  // flock on <dir>/lock, held until after the database is closed (members go in
+  // reverse order) and released by the kernel if the process dies.
+  struct FolderLock {
+    explicit FolderLock(const std::filesystem::path& dir);
+    ~FolderLock();
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+    int fd = -1;
+  };
+
   std::filesystem::path dir_;
+  FolderLock lock_;
   std::mutex mutex_;
   SqliteDb db_;
 };

@@ -33,7 +33,8 @@ nlohmann::json summary(const JobRecord& r, const WorkerPool& pool) {
                       {"status", r.status},
                       {"progress", progressOf(r, pool)},
                       {"created_at", r.created_at},
-                      {"attempts", r.attempts}};
+                      {"attempts", r.attempts},
+                      {"interrupted", r.interrupted}};
   if (!r.machine_name.empty()) j["machine"] = r.machine_name;
   if (!r.started_at.empty()) j["started_at"] = r.started_at;
   if (!r.finished_at.empty()) j["finished_at"] = r.finished_at;
@@ -133,6 +134,9 @@ nlohmann::json jobStatusSchema() {
             {"started_at", {{"type", "string"}, {"format", "date-time"}}},
             {"finished_at", {{"type", "string"}, {"format", "date-time"}}},
             {"attempts", {{"type", "integer"}, {"description", "Times a worker started it."}}},
+            {"interrupted",
+             {{"type", "integer"},
+              {"description", "Times the service died while it ran (it then runs again)."}}},
             {"mesh", {{"type", "string"}, {"description", "Where the final stock is."}}},
             {"report", schemaRef("Report")}}}};
 }

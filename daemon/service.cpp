@@ -24,7 +24,7 @@ HttpSettings httpSettings(const ServiceConfig& c) {
 }
 
 WorkerSettings workerSettings(const ServiceConfig& c) {
-  return {effectiveWorkers(c), c.queue_limit, c.max_job_seconds};
+  return {effectiveWorkers(c), c.queue_limit, c.max_job_seconds, c.max_interruptions};
 }
 
 void addContractSchemas(HttpService& http) {

@@ -160,6 +160,13 @@ const Setting kSettings[] = {
      [](ServiceConfig& c, const json& j, const std::string& w) {
        c.shutdown_grace_seconds = j.is_number() && j.get<double>() == 0.0 ? 0.0 : jsonSeconds(j, w);
      }},
+    {"max_interruptions", "MDHD_MAX_INTERRUPTIONS", "--max-interruptions",
+     [](ServiceConfig& c, const std::string& t, const std::string& w) {
+       c.max_interruptions = static_cast<int>(parseInteger(t, w, 1, 1000));
+     },
+     [](ServiceConfig& c, const json& j, const std::string& w) {
+       c.max_interruptions = static_cast<int>(jsonInteger(j, w, 1, 1000));
+     }},
     {"log_file", "MDHD_LOG_FILE", "--log-file",
      [](ServiceConfig& c, const std::string& t, const std::string&) { c.log_file = t; },
      [](ServiceConfig& c, const json& j, const std::string& w) {

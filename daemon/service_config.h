@@ -23,8 +23,9 @@ struct ServiceConfig {
   std::size_t max_program_bytes = 8u << 20;
   double max_job_seconds = 3600.0;       // a job running longer fails
   double shutdown_grace_seconds = 10.0;  // on SIGTERM: running jobs may finish this long
-  std::string log_file;                  // empty: stderr
-  bool example_machines = true;          // register the preset machines on first start
+  int max_interruptions = 3;     // a job the process died under this often fails, not reruns
+  std::string log_file;          // empty: stderr
+  bool example_machines = true;  // register the preset machines on first start
 };
 
 // Reads a config file (a JSON object with the field names above; unknown fields

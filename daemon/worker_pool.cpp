@@ -22,7 +22,11 @@ WorkerPool::~WorkerPool() {
 }
 
 void WorkerPool::start() {
-  const std::vector<std::string> waiting = store_.recoverQueued();
+  const std::vector<std::string> waiting = store_.recoverQueued(
+      settings_.max_interruptions, errorReportText("the service stopped while running this job " +
+                                                       std::to_string(settings_.max_interruptions) +
+                                                       " times; it is not run again",
+                                                   "(limits)"));
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     for (const std::string& id : waiting) queue_.pushRestored(id);

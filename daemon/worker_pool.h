@@ -26,6 +26,7 @@ struct WorkerSettings {
   int workers = 1;
   std::size_t queue_limit = 64;
   double max_job_seconds = 3600.0;
+  int max_interruptions = 3;  // a job the process died under this often fails
 };
 
 class WorkerPool {

@@ -39,7 +39,8 @@ class Daemon {
   explicit Daemon(const std::filesystem::path& dir)
       : process_({MDHD_BIN, "serve", "--port", "0", "--data-dir", (dir / "data").string(),
                   "--log-file", (dir / "log.jsonl").string(), "--workers", "1",
-                  "--shutdown-grace-seconds", "0", "--no-example-machines"}) {
+                  "--shutdown-grace-seconds", "0", "--max-interruptions", "100",
+                  "--no-example-machines"}) {
     const std::string line = process_.readLine(20s);
     const auto colon = line.rfind(':');
     if (line.find("listening on") == std::string::npos || colon == std::string::npos) {

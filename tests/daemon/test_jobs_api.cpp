@@ -384,10 +384,19 @@ TEST_F(JobsApi, MetricsCountJobsAndRequests) {
   auto cli = svc.client();
   const Posted p = postJob(*cli, tinyJob());
   waitSettled(*cli, p.body["id"]);
+  // The worker counts the job just after it commits the result: poll briefly.
   auto r = cli->Get("/metrics");
+  for (int i = 0; i < 100 && r &&
+                  r->body.find("mdhd_jobs_finished_total{outcome=\"done\"} 1") == std::string::npos;
+       ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    r = cli->Get("/metrics");
+  }
   ASSERT_TRUE(r);
   EXPECT_NE(r->body.find("mdhd_jobs_finished_total{outcome=\"done\"} 1"), std::string::npos)
       << r->body;
+  EXPECT_NE(r->body.find("mdhd_http_request_duration_seconds_bucket{le=\"0.0005\"}"),
+            std::string::npos);
   EXPECT_NE(r->body.find("mdhd_job_duration_seconds_count 1"), std::string::npos);
   EXPECT_NE(r->body.find("mdhd_http_requests_total{route=\"/api/v1/jobs\",method=\"POST\","
                          "status=\"202\"} 1"),
