@@ -50,6 +50,7 @@ struct Run {
   double error = 0.0;
   double cutSeconds = 0.0;
   double meshSeconds = 0.0;
+  double meshSeconds2 = 0.0;  // on two threads (the same triangles)
   std::int64_t triangles = 0;
   std::int64_t machined = 0;  // triangles off the stock's boundary box
   std::size_t memory = 0;
@@ -117,6 +118,13 @@ Run runOne(const Options& o, int density, bool threeWay) {
   const mesh::MeshStats ms = mesh::meshStock(view, count);
   r.meshSeconds = seconds(t0);
   r.triangles = count.triangles;
+  CountSink count2;
+  mesh::MeshOptions two;
+  two.threads = 2;
+  t0 = Clock::now();
+  mesh::meshStock(view, count2, two);
+  r.meshSeconds2 = seconds(t0);
+  if (count2.triangles != count.triangles) r.closed = false;
   r.fallback = ms.fallbackCrossings;
   ErrorSink err(donut);
   mesh::meshStock(view, err);
@@ -199,23 +207,24 @@ int main(int argc, char** argv) {
       o.steps, o.substeps, chord);
   std::map<int, Run> hm, tm;
   bool ok = true;
-  std::printf("%7s %6s %8s %8s %10s %10s %10s %7s %6s %6s %11s %11s\n", "density", "map", "cut s",
-              "mesh s", "triangles", "tris/s", "memory KB", "leaves", "splits", "forced",
-              "max error", "thesis");
+  std::printf("%7s %6s %8s %8s %10s %10s %10s %10s %7s %6s %6s %11s %11s\n", "density", "map",
+              "cut s", "mesh s", "triangles", "tris/s", "2 thr", "memory KB", "leaves", "splits",
+              "forced", "max error", "thesis");
   for (int d : o.densities) {
     for (int way = 0; way < 2; ++way) {
       const bool threeWay = way == 1;
       if ((threeWay && !o.threeWay) || (!threeWay && !o.plain)) continue;
       const Run r = runOne(o, d, threeWay);
       (threeWay ? tm : hm)[d] = r;
-      std::printf("%7d %6s %8.2f %8.3f %10lld %10.3g %10.1f %7lld %6lld %6lld %11.7f %11.7f%s%s\n",
-                  d, threeWay ? "3-map" : "plain", r.cutSeconds, r.meshSeconds,
-                  static_cast<long long>(r.triangles), r.triangles / r.meshSeconds,
-                  r.memory / 1024.0, static_cast<long long>(r.leaves),
-                  static_cast<long long>(r.splits), static_cast<long long>(r.forced), r.error,
-                  thesis(threeWay ? kThesis3Map : kThesisHeightmap, d),
-                  o.check ? (r.closed ? "  closed" : "  NOT CLOSED") : "",
-                  r.fallback ? "  (cells disagree on shared vertices)" : "");
+      std::printf(
+          "%7d %6s %8.2f %8.3f %10lld %10.3g %10.3g %10.1f %7lld %6lld %6lld %11.7f %11.7f%s%s\n",
+          d, threeWay ? "3-map" : "plain", r.cutSeconds, r.meshSeconds,
+          static_cast<long long>(r.triangles), r.triangles / r.meshSeconds,
+          r.triangles / r.meshSeconds2, r.memory / 1024.0, static_cast<long long>(r.leaves),
+          static_cast<long long>(r.splits), static_cast<long long>(r.forced), r.error,
+          thesis(threeWay ? kThesis3Map : kThesisHeightmap, d),
+          o.check ? (r.closed ? "  closed" : "  NOT CLOSED") : "",
+          r.fallback ? "  (cells disagree on shared vertices)" : "");
       std::fflush(stdout);
       if (o.check && !r.closed) ok = false;
       if (o.check && threeWay && r.error > thesis(kThesis3Map, d)) ok = false;

@@ -1,7 +1,8 @@
 // Meshing throughput and mesh size for the example jobs: each job in
 // ../shared/examples is checked as `mdhd check` would (its own density), the
-// final stock meshed into a counting sink (best of `--repeat` runs) and into an
-// indexed mesh to check it is closed. STL size = 84 + 50 bytes per triangle.
+// final stock meshed into a counting sink (best of `--repeat` runs, on one
+// thread and on two) and into an indexed mesh to check it is closed. STL size
+// = 84 + 50 bytes per triangle.
 //
 //   bench_mesh_jobs [--examples DIR] [--repeat N] [--smoke]
 #include <algorithm>
@@ -32,7 +33,7 @@ class CountSink final : public mesh::MeshSink {
 };
 
 struct Measured {
-  double cutSeconds = 0.0, meshSeconds = 0.0;
+  double cutSeconds = 0.0, meshSeconds = 0.0, meshSeconds2 = 0.0;  // 1 and 2 threads
   std::int64_t triangles = 0, leaves = 0, fallback = 0;
   bool closed = false;
 };
@@ -53,6 +54,16 @@ Measured measure(const std::filesystem::path& job, int repeat) {
       out.triangles = count.triangles;
       out.leaves = s.leaves;
       out.fallback = s.fallbackCrossings;
+    }
+    out.meshSeconds2 = 1e30;
+    mesh::MeshOptions two;
+    two.threads = 2;
+    for (int r = 0; r < repeat; ++r) {
+      CountSink count;
+      const auto t0 = Clock::now();
+      mesh::meshStock(view, count, two);
+      out.meshSeconds2 =
+          std::min(out.meshSeconds2, std::chrono::duration<double>(Clock::now() - t0).count());
     }
     mesh::IndexedMesh m;
     mesh::meshStock(view, m);
@@ -101,15 +112,16 @@ int main(int argc, char** argv) {
                                 return p.filename().string().find("3axis") == std::string::npos;
                               }),
                jobs.end());
-  std::printf("%-20s %8s %10s %8s %10s %10s %9s %7s\n", "job", "check s", "triangles", "mesh s",
-              "tris/s", "STL MB", "leaves", "closed");
+  std::printf("%-20s %8s %10s %8s %10s %10s %10s %9s %7s\n", "job", "check s", "triangles",
+              "mesh s", "tris/s", "2 thr", "STL MB", "leaves", "closed");
   bool ok = !jobs.empty();
   for (const auto& job : jobs) {
     const Measured m = measure(job, repeat);
-    std::printf("%-20s %8.2f %10lld %8.4f %10.3g %10.2f %9lld %7s\n", job.stem().string().c_str(),
-                m.cutSeconds, static_cast<long long>(m.triangles), m.meshSeconds,
-                m.triangles / m.meshSeconds, (84.0 + 50.0 * m.triangles) / 1e6,
-                static_cast<long long>(m.leaves), m.closed && m.fallback == 0 ? "yes" : "NO");
+    std::printf("%-20s %8.2f %10lld %8.4f %10.3g %10.3g %10.2f %9lld %7s\n",
+                job.stem().string().c_str(), m.cutSeconds, static_cast<long long>(m.triangles),
+                m.meshSeconds, m.triangles / m.meshSeconds, m.triangles / m.meshSeconds2,
+                (84.0 + 50.0 * m.triangles) / 1e6, static_cast<long long>(m.leaves),
+                m.closed && m.fallback == 0 ? "yes" : "NO");
     std::fflush(stdout);
     ok = ok && m.closed && m.fallback == 0 && m.triangles > 0;
   }

@@ -10,6 +10,7 @@
 
 #include "sim/mesh/cube_cases.h"
 #include "sim/mesh/loop_triangulation.h"
+#include "sim/mesh/parallel_runs.h"
 #include "sim/mesh/stock_view.h"
 
 namespace mdhd::mesh {
@@ -299,15 +300,23 @@ MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& op
         throw std::invalid_argument(
             std::string("mesh: region box is empty or not a number along ") + "xyz"[a]);
   }
+  std::vector<int> leaves;
+  for (int i = 0; i < view.leafCount(); ++i)
+    if (!options.region || overlaps(view.leaf(i), view, *options.region)) leaves.push_back(i);
   MeshStats stats;
   stats.brokenLeaves = view.brokenLeaves();
-  Mesher mesher(view, sink, stats);
-  for (int i = 0; i < view.leafCount(); ++i) {
-    if (options.region && !overlaps(view.leaf(i), view, *options.region)) continue;
-    ++stats.leaves;
-    mesher.interior(i);
-    mesher.exterior(i);
-  }
+  const MeshRun meshRun = [&](std::span<const int> run, MeshSink& out, MeshStats& s) {
+    Mesher mesher(view, out, s);
+    for (int i : run) {
+      ++s.leaves;
+      mesher.interior(i);
+      mesher.exterior(i);
+    }
+  };
+  if (options.threads > 1 && leaves.size() > 1)
+    meshInParallel(leaves, options.threads, sink, stats, meshRun);
+  else
+    meshRun(leaves, sink, stats);
   return stats;
 }
 

@@ -26,6 +26,9 @@ struct MeshOptions {
   // Only the cells overlapping this box (mm, W), for viewers. The result is
   // then open where the region cuts through material.
   std::optional<geom::Aabb> region;
+  // Threads meshing runs of leaves; the sink still gets every triangle from
+  // the calling thread, in the same order and with the same keys as with one.
+  int threads = 1;
 };
 
 struct MeshStats {
