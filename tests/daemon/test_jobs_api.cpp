@@ -407,3 +407,64 @@ TEST_F(JobsApi, MetricsCountJobsAndRequests) {
 
 }  // namespace
 }  // namespace mdhd::service_test
+
+namespace mdhd::service_test {
+namespace {
+
+// Every "$ref" in `j` names a schema that `doc` has.
+void expectRefsResolve(const nlohmann::json& j, const nlohmann::json& doc) {
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) {
+      if (key == "$ref" && value.is_string()) {
+        const std::string ref = value;
+        const std::string prefix = "#/components/schemas/";
+        ASSERT_EQ(ref.rfind(prefix, 0), 0u) << ref;
+        EXPECT_TRUE(doc["components"]["schemas"].contains(ref.substr(prefix.size()))) << ref;
+      } else {
+        expectRefsResolve(value, doc);
+      }
+    }
+  } else if (j.is_array()) {
+    for (const auto& value : j) expectRefsResolve(value, doc);
+  }
+}
+
+TEST(OpenApi, DescribesEveryRouteOfTheContract) {
+  TempDir dir;
+  RunningService svc(testConfig(dir.path()));
+  auto r = svc.client()->Get("/openapi.json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200);
+  const nlohmann::json doc = body(r);
+  const std::vector<std::pair<std::string, std::string>> contract = {
+      {"/api/v1/jobs", "post"},
+      {"/api/v1/jobs", "get"},
+      {"/api/v1/jobs/{id}", "get"},
+      {"/api/v1/jobs/{id}", "delete"},
+      {"/api/v1/jobs/{id}/mesh", "get"},
+      {"/api/v1/machines", "get"},
+      {"/api/v1/machines/{name}", "put"},
+      {"/api/v1/machines/{name}", "get"},
+      {"/api/v1/machines/{name}", "delete"},
+      {"/api/v1/shadows", "post"},
+      {"/api/v1/shadows/{id}", "get"},
+      {"/api/v1/shadows/{id}", "delete"},
+      {"/api/v1/shadows/{id}/events", "get"},
+      {"/api/v1/shadows/{id}/mesh", "get"},
+      {"/healthz", "get"},
+      {"/metrics", "get"},
+      {"/openapi.json", "get"}};
+  for (const auto& [path, method] : contract) {
+    ASSERT_TRUE(doc["paths"].contains(path)) << path;
+    const nlohmann::json& op = doc["paths"][path];
+    ASSERT_TRUE(op.contains(method)) << method << " " << path;
+    EXPECT_TRUE(op[method].contains("responses")) << method << " " << path;
+  }
+  for (const char* schema : {"Job", "Job_machine", "Report", "Error", "JobStatus"}) {
+    EXPECT_TRUE(doc["components"]["schemas"].contains(schema)) << schema;
+  }
+  expectRefsResolve(doc, doc);
+}
+
+}  // namespace
+}  // namespace mdhd::service_test
