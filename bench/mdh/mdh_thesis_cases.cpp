@@ -4,7 +4,9 @@
 // metrics of table 6.6 beside the thesis's, and CPU time. RS is seeded: each
 // ruleset runs with seeds 1..N and prints min and median.
 //   mdh_thesis_cases [--density 100] [--seeds 3] [--rulesets few|table66|all]
-//                    [--cases CS,D1,...] [--smoke]
+//                    [--cases CS,D1,...] [--cuts-per-motion 1] [--smoke]
+// --cuts-per-motion k: each motion cut as k swept pieces (10 = the thesis's
+// in-between steps as separate cuts; 1 = one swept volume per motion).
 // --smoke: density 25, one seed, three rulesets; exits 1 if a result is wrong.
 #include <algorithm>
 #include <cmath>
@@ -19,6 +21,7 @@
 
 #include "bench/mdh/thesis_cases.h"
 #include "bench/mdh/thesis_reference.h"
+#include "sim/geometry/pose_interpolation.h"
 #include "sim/geometry/swept_volume.h"
 #include "sim/geometry/tool_part.h"
 #include "sim/mdh/stock.h"
@@ -43,12 +46,23 @@ struct Run {
   double boxVolume = 0;
 };
 
-Prepared prepare(bench::ThesisCase c) {
+Prepared prepare(bench::ThesisCase c, int cutsPerMotion) {
   Prepared p{std::move(c), {}, {}};
   const geom::ToolPart part = geom::makeToolPart(p.c.tool, geom::ToolPartKind::kCutter);
   for (const auto& m : p.c.motions) {
-    p.sweeps.push_back(geom::SweptVolume::between(part, m.a, m.b, kInBetweenSteps, 1e-3));
-    p.axes.push_back(glm::normalize(m.a.axis + m.b.axis));
+    if (cutsPerMotion <= 1) {
+      p.sweeps.push_back(geom::SweptVolume::between(part, m.a, m.b, kInBetweenSteps, 1e-3));
+      p.axes.push_back(glm::normalize(m.a.axis + m.b.axis));
+      continue;
+    }
+    // Each in-between step its own cut, as the thesis stamped them.
+    geom::ToolPose from = m.a;
+    for (int i = 1; i <= cutsPerMotion; ++i) {
+      const geom::ToolPose to = geom::interpolatePose(m.a, m.b, double(i) / cutsPerMotion);
+      p.sweeps.push_back(geom::SweptVolume::between(part, from, to, 1, 1e-3));
+      p.axes.push_back(glm::normalize(from.axis + to.axis));
+      from = to;
+    }
   }
   return p;
 }
@@ -104,6 +118,7 @@ int main(int argc, char** argv) {
   int seeds = 3;
   std::string rulesetChoice = "few", caseFilter;
   bool smoke = false;
+  int cutsPerMotion = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* next = i + 1 < argc ? argv[i + 1] : "";
@@ -115,6 +130,8 @@ int main(int argc, char** argv) {
       rulesetChoice = next, ++i;
     else if (a == "--cases")
       caseFilter = "," + std::string(next) + ",", ++i;
+    else if (a == "--cuts-per-motion")
+      cutsPerMotion = std::atoi(next), ++i;
     else if (a == "--smoke")
       smoke = true;
     else {
@@ -143,7 +160,7 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < all.size(); ++i) {
       if (!caseFilter.empty() && caseFilter.find("," + all[i].name + ",") == std::string::npos)
         continue;
-      cases.push_back(prepare(all[i]));
+      cases.push_back(prepare(all[i], cutsPerMotion));
       thesisIndex.push_back(static_cast<int>(i));
     }
   }
