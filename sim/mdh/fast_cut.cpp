@@ -225,12 +225,21 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
   const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
   const GridBox& box = map.box();
   s.changes.clear();
+  const bool up = map.direction().sign > 0;
+  const double bottom = box.lo[a], top = box.hi[a];
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
     for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
       const auto tool = cache.line(a, cu, cv);
       if (tool.empty() && a == 2) continue;
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
       const double h = map.height(iu, iv);
+      // Most columns under the tool are not reached below their top (behind
+      // the tool, above the part): they keep their height. (A column of zero
+      // solid length is left to cutColumn, which empties it.)
+      if (map.solidCount(h) == 0) continue;
+      if (map.columnLength(h) > kZeroLength &&
+          (up ? tool.front().lo >= std::min(h, top) : tool.back().hi <= std::max(h, bottom)))
+        continue;
       double nh = 0.0;
       std::array<int, 3> base{};
       base[u] = cu;

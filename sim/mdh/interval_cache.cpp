@@ -2,19 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <thread>
 
 namespace mdhd::mdh {
-
-// One line's intervals. state == the step's stamp: filled; stamp - 1: being
-// filled by another thread; anything else: not asked for yet this step.
-struct LineStore::Slot {
-  std::atomic<std::uint32_t> state{0};
-  std::uint32_t count = 0;
-  const Span* data = nullptr;
-  Span inline_[2];  // a convex tool crosses a line once; a union of a few, twice
-};
 
 LineStore::LineStore() = default;
 LineStore::~LineStore() = default;
@@ -22,11 +14,13 @@ LineStore::~LineStore() = default;
 std::uint32_t LineStore::begin(std::size_t n) {
   if (n > capacity_) {
     capacity_ = std::max(n, capacity_ + capacity_ / 2);
-    slots_ = std::make_unique<Slot[]>(capacity_);  // all states 0: none filled
+    states_ = std::make_unique<std::atomic<std::uint32_t>[]>(capacity_);  // 0: none filled
+    for (std::size_t i = 0; i < capacity_; ++i) states_[i].store(0, std::memory_order_relaxed);
+    slots_ = std::make_unique<Slot[]>(capacity_);
   }
   stamp_ += 2;
   if (stamp_ == 0) {  // wrapped after 2^31 steps: forget every old stamp
-    for (std::size_t i = 0; i < capacity_; ++i) slots_[i].state.store(0);
+    for (std::size_t i = 0; i < capacity_; ++i) states_[i].store(0);
     stamp_ = 2;
   }
   overflow_.clear();
@@ -38,7 +32,12 @@ namespace {
 // Coordinates within 1e-9 of a grid plane are snapped onto it, so a tool face
 // that sits on a grid level in millimetres does so in grid units too.
 double snap(double g) {
-  const double r = std::round(g);
+  // std::round without the libm call (the hottest line of a fill); far from
+  // the grid's range, where the cast could overflow, std::round itself.
+  const double r =
+      std::abs(g) < 1e15
+          ? static_cast<double>(static_cast<std::int64_t>(g >= 0.0 ? g + 0.5 : g - 0.5))
+          : std::round(g);
   return std::abs(g - r) < 1e-9 ? r : g;
 }
 
@@ -60,9 +59,16 @@ IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid,
   if (touched_.empty()) return;
   std::size_t n = 0;
   for (int a = 0; a < 3; ++a) {
-    base_[a] = n;
-    if (axes_ & (1u << a))
-      n += static_cast<std::size_t>(touched_.points(axisU(a))) * touched_.points(axisV(a));
+    if (!(axes_ & (1u << a))) continue;
+    const int u = axisU(a), v = axisV(a);
+    Lines& l = lines_[a];
+    l = {touched_.lo[u],
+         touched_.hi[u],
+         touched_.lo[v],
+         touched_.hi[v],
+         static_cast<std::size_t>(touched_.points(u)),
+         n};
+    n += l.nu * static_cast<std::size_t>(touched_.points(v));
   }
   if (store_ == nullptr) {
     owned_ = std::make_unique<LineStore>();
@@ -109,33 +115,27 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
   store_->overflow_.push_back(std::move(heap));
 }
 
-std::span<const Span> IntervalCache::line(int axis, int iu, int iv) const {
-  if (axis < 0 || axis > 2 || !(axes_ & (1u << axis)))
-    throw std::logic_error("mdh: interval cache asked for lines it was not made for");
-  if (touched_.empty()) return {};
-  const int u = axisU(axis), v = axisV(axis);
-  if (iu < touched_.lo[u] || iu > touched_.hi[u] || iv < touched_.lo[v] || iv > touched_.hi[v])
-    return {};
-  const std::size_t i = base_[axis] +
-                        static_cast<std::size_t>(iv - touched_.lo[v]) * touched_.points(u) +
-                        (iu - touched_.lo[u]);
-  LineStore::Slot& slot = store_->slots_[i];
-  for (std::uint32_t state; (state = slot.state.load(std::memory_order_acquire)) != stamp_;) {
+void IntervalCache::wrongAxis() {
+  throw std::logic_error("mdh: interval cache asked for lines it was not made for");
+}
+
+void IntervalCache::fillOnce(int axis, int iu, int iv, std::size_t i) const {
+  std::atomic<std::uint32_t>& s = store_->states_[i];
+  for (std::uint32_t state; (state = s.load(std::memory_order_acquire)) != stamp_;) {
     if (state == stamp_ - 1) {
       // Another thread is filling it (lines are shared only along brick faces).
       std::this_thread::yield();
       continue;
     }
-    if (!slot.state.compare_exchange_strong(state, stamp_ - 1, std::memory_order_acquire)) continue;
+    if (!s.compare_exchange_strong(state, stamp_ - 1, std::memory_order_acquire)) continue;
     try {
-      fill(axis, iu, iv, slot);
+      fill(axis, iu, iv, store_->slots_[i]);
     } catch (...) {
-      slot.state.store(state, std::memory_order_release);  // not filled: anyone may retry
+      s.store(state, std::memory_order_release);  // not filled: anyone may retry
       throw;
     }
-    slot.state.store(stamp_, std::memory_order_release);
+    s.store(stamp_, std::memory_order_release);
   }
-  return std::span<const Span>(slot.data, slot.count);
 }
 
 }  // namespace mdhd::mdh

@@ -31,10 +31,18 @@ class LineStore {
 
  private:
   friend class IntervalCache;
-  struct Slot;
+  // One line's intervals. Its state (kept apart, so the states of a step's
+  // lines share cache lines) == the step's stamp: filled; stamp - 1: being
+  // filled by another thread; anything else: not asked for yet this step.
+  struct Slot {
+    const Span* data = nullptr;
+    std::uint32_t count = 0;
+    Span inline_[2];  // a convex tool crosses a line once; a union of a few, twice
+  };
   // Makes room for n slots and returns the stamp that marks this step's filled ones.
   std::uint32_t begin(std::size_t n);
 
+  std::unique_ptr<std::atomic<std::uint32_t>[]> states_;
   std::unique_ptr<Slot[]> slots_;
   std::size_t capacity_ = 0;
   std::uint32_t stamp_ = 0;
@@ -58,11 +66,27 @@ class IntervalCache {
   // Open intervals of the tool along the line of `axis` through vertex indices
   // (iu, iv) on axes (axis+1)%3 and (axis+2)%3; empty outside the bounds.
   // Throws std::logic_error for an axis the cache was not made for.
-  std::span<const Span> line(int axis, int iu, int iv) const;
+  std::span<const Span> line(int axis, int iu, int iv) const {
+    if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
+    const Lines& l = lines_[axis];
+    if (iu < l.ulo || iu > l.uhi || iv < l.vlo || iv > l.vhi) return {};
+    const std::size_t i =
+        l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
+    if (store_->states_[i].load(std::memory_order_acquire) != stamp_) fillOnce(axis, iu, iv, i);
+    const LineStore::Slot& slot = store_->slots_[i];
+    return std::span<const Span>(slot.data, slot.count);
+  }
   // How many lineIntervals calls were made (for tests of "once per line").
   std::size_t queries() const { return queries_.load(std::memory_order_relaxed); }
 
  private:
+  // The lines of one axis in the store: (iu, iv) ranges and first slot.
+  struct Lines {
+    int ulo = 1, uhi = 0, vlo = 1, vhi = 0;  // empty unless the box is not
+    std::size_t nu = 0, base = 0;
+  };
+  [[noreturn]] static void wrongAxis();
+  void fillOnce(int axis, int iu, int iv, std::size_t i) const;
   void fill(int axis, int iu, int iv, LineStore::Slot& slot) const;
 
   const GridSpec& grid_;
@@ -72,7 +96,7 @@ class IntervalCache {
   LineStore* store_ = nullptr;
   std::uint32_t stamp_ = 0;
   unsigned axes_ = 7u;
-  std::array<std::size_t, 3> base_{};  // first slot of each axis's lines
+  std::array<Lines, 3> lines_{};  // first slot of each axis's lines
   mutable std::atomic<std::size_t> queries_{0};
 };
 
