@@ -27,6 +27,8 @@ struct Scratch {
   std::vector<Span> before, after, pieces;
   std::vector<double> heights, row, oldCrossings;
   std::vector<std::uint8_t> changed, was, now;
+  std::vector<int> counts;     // solid vertex count of every column before the cut
+  std::vector<int> newCounts;  // of the row being rebuilt, after it
 };
 
 // One solid run from the base face: its far end is the column's new height.
@@ -102,6 +104,17 @@ bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
   return true;
 }
 
+// The levels where two columns of solid counts f0 and f1 differ (ThreeMap::straddle).
+void band(const ThreeMap& m, int f0, int f1, int& first, int& count) {
+  count = std::abs(f0 - f1);
+  first = m.direction().sign > 0 ? m.box().lo[m.axis()] + std::min(f0, f1)
+                                 : m.box().hi[m.axis()] - std::max(f0, f1) + 1;
+}
+
+int countAt(const ThreeMap& m, const Scratch& s, int family, int r, int e) {
+  return s.counts[family == 0 ? r * m.columnsU() + e : e * m.columnsU() + r];
+}
+
 // Rebuilds one row of embedded heights; `heights` are the row's new parent
 // heights, `changed` marks the columns that moved. Edges in [e0, e1) lie in
 // the tool's box: their crossings can move even when neither column changes.
@@ -122,8 +135,8 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
     const double oh0 = m.rowHeight(family, r, e), oh1 = m.rowHeight(family, r, e + 1);
     const double nh0 = s.heights[e], nh1 = s.heights[e + 1];
     int ofirst = 0, ocount = 0, nfirst = 0, ncount = 0;
-    m.straddle(oh0, oh1, ofirst, ocount);
-    m.straddle(nh0, nh1, nfirst, ncount);
+    band(m, countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), ofirst, ocount);
+    band(m, s.newCounts[e], s.newCounts[e + 1], nfirst, ncount);
     const bool touched = s.changed[e] || s.changed[e + 1];
     const bool reached = touched || (e >= e0 && e < e1);
     const std::size_t start = dst.size();
@@ -172,7 +185,7 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
   for (int e = 0; e < e1; ++e) {
     const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
     int first = 0, count = 0;
-    m.straddle(h0, h1, first, count);
+    band(m, countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), first, count);
     if (e < e0 || count == 0) {
       pos += count;
       continue;
@@ -233,12 +246,11 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
       if (tool.empty() && a == 2) continue;
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
       const double h = map.height(iu, iv);
-      // Most columns under the tool are not reached below their top (behind
-      // the tool, above the part): they keep their height. (A column of zero
-      // solid length is left to cutColumn, which empties it.)
-      if (map.solidCount(h) == 0) continue;
-      if (map.columnLength(h) > kZeroLength &&
-          (up ? tool.front().lo >= std::min(h, top) : tool.back().hi <= std::max(h, bottom)))
+      // In a z map, most columns under the tool are not reached below their
+      // top (behind the tool, above the part): they keep their height, as
+      // cutZColumn would find. (Side maps take their vertices from z lines.)
+      if (a == 2 && (map.solidCount(h) == 0 || (up ? tool.front().lo >= std::min(h, top)
+                                                   : tool.back().hi <= std::max(h, bottom))))
         continue;
       double nh = 0.0;
       std::array<int, 3> base{};
@@ -259,6 +271,10 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
              (map.columnLength(c.height) - map.columnLength(map.height(c.iu, c.iv)));
   bool moved = !s.changes.empty();
   if (map.threeWay()) {
+    s.counts.resize(static_cast<std::size_t>(map.columnsU()) * map.columnsV());
+    for (int iv = 0; iv < map.columnsV(); ++iv)
+      for (int iu = 0; iu < map.columnsU(); ++iu)
+        s.counts[iv * map.columnsU() + iu] = map.solidCount(map.height(iu, iv));
     for (int family = 0; family < 2; ++family) {
       const int x = family == 0 ? u : v, y = family == 0 ? v : u;
       const int e0 = region.lo[x] - box.lo[x], e1 = region.hi[x] - box.lo[x];
@@ -273,12 +289,17 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
         }
         const int n = map.edgesInRow(family) + 1;
         s.heights.resize(n);
+        s.newCounts.resize(n);
         s.changed.assign(n, 0);
-        for (int e = 0; e < n; ++e) s.heights[e] = map.rowHeight(family, r, e);
+        for (int e = 0; e < n; ++e) {
+          s.heights[e] = map.rowHeight(family, r, e);
+          s.newCounts[e] = countAt(map, s, family, r, e);
+        }
         for (int i = begin; i < end; ++i) {
           const ColumnChange& c = s.changes[s.byRow[i]];
           const int e = family == 0 ? c.iu : c.iv;
           s.heights[e] = c.height;
+          s.newCounts[e] = map.solidCount(c.height);
           s.changed[e] = 1;
         }
         rebuildRow(map, family, r, e0, e1, cache, s, volumeDelta);

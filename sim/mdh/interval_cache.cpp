@@ -121,6 +121,11 @@ void IntervalCache::wrongAxis() {
 
 void IntervalCache::fillOnce(int axis, int iu, int iv, std::size_t i) const {
   std::atomic<std::uint32_t>& s = store_->states_[i];
+  if (!shared_) {
+    fill(axis, iu, iv, store_->slots_[i]);
+    s.store(stamp_, std::memory_order_relaxed);
+    return;
+  }
   for (std::uint32_t state; (state = s.load(std::memory_order_acquire)) != stamp_;) {
     if (state == stamp_ - 1) {
       // Another thread is filling it (lines are shared only along brick faces).

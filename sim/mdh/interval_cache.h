@@ -76,6 +76,9 @@ class IntervalCache {
     const LineStore::Slot& slot = store_->slots_[i];
     return std::span<const Span>(slot.data, slot.count);
   }
+  // Whether several threads may ask for lines at once (the default). A cache
+  // used by one thread skips the atomic claim of a line.
+  void setShared(bool shared) { shared_ = shared; }
   // How many lineIntervals calls were made (for tests of "once per line").
   std::size_t queries() const { return queries_.load(std::memory_order_relaxed); }
 
@@ -96,6 +99,7 @@ class IntervalCache {
   LineStore* store_ = nullptr;
   std::uint32_t stamp_ = 0;
   unsigned axes_ = 7u;
+  bool shared_ = true;
   std::array<Lines, 3> lines_{};  // first slot of each axis's lines
   mutable std::atomic<std::size_t> queries_{0};
 };

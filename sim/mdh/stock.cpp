@@ -87,7 +87,7 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
       tool_direction == glm::dvec3(0.0))
     tool_direction = {0.0, 0.0, 1.0};
   CutResult result;
-  const IntervalCache cache(grid_, solid, lines_.get());
+  IntervalCache cache(grid_, solid, lines_.get());
   if (cache.touched().empty()) return result;
   CutCounters step = cutBricks(cache, tool_direction);
   // Vertices forced cells dropped are cut out of every other cell holding
@@ -96,7 +96,7 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
     dropped.swap(step.dropped);
     step.dropped.clear();
     const VertexDrops drops(grid_, dropped);
-    const IntervalCache dropCache(grid_, drops);
+    IntervalCache dropCache(grid_, drops);
     step.add(cutBricks(dropCache, tool_direction));
   }
   totals_.add(step);
@@ -109,7 +109,7 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
   return result;
 }
 
-CutCounters Stock::cutBricks(const IntervalCache& cache, const glm::dvec3& tool_direction) {
+CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direction) {
   const GridBox& t = cache.touched();
   std::vector<int> items;
   std::array<int, 3> first{}, last{};
@@ -136,7 +136,9 @@ CutCounters Stock::cutBricks(const IntervalCache& cache, const glm::dvec3& tool_
   // Waking a helper costs microseconds: small steps stay on this thread.
   constexpr std::int64_t kParallelPoints = 32768;
   const int workers = t.pointCount() < kParallelPoints ? 1 : threads_;
-  if (workers > 1 && items.size() > 1) {
+  const bool parallel = workers > 1 && items.size() > 1;
+  cache.setShared(parallel);
+  if (parallel) {
     if (!pool_) pool_ = std::make_unique<WorkerPool>(threads_);
     pool_->run(items.size(), workers, work);
   } else {

@@ -105,7 +105,7 @@ class Stock {
   Stock(const Stock& other, CloneTag);
   const Cell* leafAt(const glm::dvec3& g) const;
   // One pass of a step over the bricks the cache reaches, on the workers.
-  CutCounters cutBricks(const IntervalCache& cache, const glm::dvec3& toolDirection);
+  CutCounters cutBricks(IntervalCache& cache, const glm::dvec3& toolDirection);
   // Solid segments (grid units, merged across cells) of one grid line.
   void gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const;
 
