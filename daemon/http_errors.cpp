@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "daemon/number_text.h"
 #include "protocol/job_json.h"
 
 namespace mdhd::service {
@@ -82,21 +83,14 @@ nlohmann::json parseJsonBody(const httplib::Request& req) {
 long long queryInteger(const httplib::Request& req, const char* name, long long fallback,
                        long long lo, long long hi) {
   if (!req.has_param(name)) return fallback;
-  const std::string text = req.get_param_value(name);
-  std::size_t used = 0;
-  long long v = 0;
-  try {
-    v = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || v < lo || v > hi) {
+  const std::optional<long long> v = integerInRange(req.get_param_value(name), lo, hi);
+  if (!v) {
     throw HttpError(400, "bad_parameter",
                     std::string(name) + ": expected an integer from " + std::to_string(lo) +
                         " to " + std::to_string(hi),
                     {{"parameter", name}});
   }
-  return v;
+  return *v;
 }
 
 }  // namespace mdhd::service

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <thread>
 
+#include "daemon/number_text.h"
 #include "protocol/job_json.h"
 
 extern char** environ;
@@ -28,32 +29,20 @@ struct Setting {
 
 long long parseInteger(const std::string& text, const std::string& where, long long lo,
                        long long hi) {
-  std::size_t used = 0;
-  long long v = 0;
-  try {
-    v = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || v < lo || v > hi) {
+  const std::optional<long long> v = integerInRange(text, lo, hi);
+  if (!v) {
     throw FieldError(where, "expected an integer from " + std::to_string(lo) + " to " +
                                 std::to_string(hi) + ", got \"" + text + "\"");
   }
-  return v;
+  return *v;
 }
 
 double parseSeconds(const std::string& text, const std::string& where) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !(v > 0.0) || v > 1e9) {
+  const std::optional<double> v = numberInRange(text, 0.0, 1e9);
+  if (!v || !(*v > 0.0)) {
     throw FieldError(where, "expected a positive number of seconds, got \"" + text + "\"");
   }
-  return v;
+  return *v;
 }
 
 long long jsonInteger(const json& j, const std::string& where, long long lo, long long hi) {

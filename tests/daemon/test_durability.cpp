@@ -87,6 +87,19 @@ void postUntilGone(const Daemon& daemon, Ledger& ledger, std::atomic<bool>& stop
   }
 }
 
+// Posts a job (expecting 202), notes it in the ledger, returns its id.
+std::string postJob(httplib::Client& cli, Ledger& ledger, int variant) {
+  auto r = cli.Post("/api/v1/jobs", jobOf(variant).dump(), "application/json");
+  if (!r || r->status != 202) throw std::runtime_error("POST was not accepted");
+  const std::string id = nlohmann::json::parse(r->body)["id"];
+  ledger.add(id, variant);
+  return id;
+}
+
+bool isRunning(const nlohmann::json& d) {
+  return d["status"] == "running";
+}
+
 TEST(Durability, KilledAtAnyMomentNoAcceptedJobIsLost) {
   TempDir dir;
   Ledger ledger;
@@ -95,29 +108,15 @@ TEST(Durability, KilledAtAnyMomentNoAcceptedJobIsLost) {
   {  // A job running when the daemon dies runs again after the restart.
     Daemon daemon(dir.path());
     auto cli = daemon.client();
-    auto r = cli->Post("/api/v1/jobs", mediumJob().dump(), "application/json");
-    ASSERT_TRUE(r);
-    ASSERT_EQ(r->status, 202);
-    const std::string id = nlohmann::json::parse(r->body)["id"];
-    ledger.add(id, -1);
-    for (int v = 0; v < 3; ++v) {
-      auto t = cli->Post("/api/v1/jobs", tinyJob(v).dump(), "application/json");
-      ASSERT_TRUE(t);
-      ASSERT_EQ(t->status, 202);
-      ledger.add(nlohmann::json::parse(t->body)["id"], v);
-    }
-    const auto doc =
-        waitJob(*cli, id, [](const nlohmann::json& d) { return d["status"] == "running"; });
-    ASSERT_EQ(doc["status"], "running");
+    const std::string id = postJob(*cli, ledger, -1);
+    for (int v = 0; v < 3; ++v) postJob(*cli, ledger, v);
+    ASSERT_EQ(waitJob(*cli, id, isRunning)["status"], "running");
     EXPECT_EQ(daemon.stop(SIGKILL), 128 + SIGKILL);
   }
   {  // Killed right after a 202.
     Daemon daemon(dir.path());
     auto cli = daemon.client();
-    auto r = cli->Post("/api/v1/jobs", tinyJob(5).dump(), "application/json");
-    ASSERT_TRUE(r);
-    ASSERT_EQ(r->status, 202);
-    ledger.add(nlohmann::json::parse(r->body)["id"], 5);
+    postJob(*cli, ledger, 5);
     daemon.stop(SIGKILL);
   }
   for (auto delay : {20ms, 120ms, 400ms, 900ms}) {  // killed while jobs are posted and run
@@ -133,14 +132,8 @@ TEST(Durability, KilledAtAnyMomentNoAcceptedJobIsLost) {
   {  // SIGTERM: the running job is stopped and queued again; exit status 0.
     Daemon daemon(dir.path());
     auto cli = daemon.client();
-    auto r = cli->Post("/api/v1/jobs", mediumJob().dump(), "application/json");
-    ASSERT_TRUE(r);
-    ASSERT_EQ(r->status, 202);
-    const std::string id = nlohmann::json::parse(r->body)["id"];
-    ledger.add(id, -1);
-    const auto doc = waitJob(
-        *cli, id, [](const nlohmann::json& d) { return d["status"] == "running"; }, 120s);
-    ASSERT_EQ(doc["status"], "running");
+    const std::string id = postJob(*cli, ledger, -1);
+    ASSERT_EQ(waitJob(*cli, id, isRunning, 120s)["status"], "running");
     EXPECT_EQ(daemon.stop(SIGTERM), 0);
   }
 
