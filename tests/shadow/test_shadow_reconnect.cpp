@@ -62,6 +62,7 @@ TEST(ShadowReconnect, SimulatorKilledAndRestartedMidRun) {
   ASSERT_GE(lineOf(session), 9);
   sim->stop(SIGKILL, 5s);
   ASSERT_TRUE(waitState(session, ShadowState::kStale, 2s));
+  ASSERT_TRUE(session.waitIdle(10s));  // what was polled before is cut
   const double volume_at_kill = session.stockVolume();
   std::this_thread::sleep_for(400ms);
   EXPECT_EQ(session.state(), ShadowState::kStale);
