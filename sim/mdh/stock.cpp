@@ -11,6 +11,7 @@
 #include "sim/mdh/cut_cell.h"
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/rng.h"
+#include "sim/mdh/shared_samples.h"
 #include "sim/mdh/vertex_drops.h"
 #include "sim/mdh/worker_pool.h"
 
@@ -151,6 +152,9 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
 
 void Stock::checkInvariants() const {
   for (const Cell& root : roots_) checkCell(root);
+  const auto disagreements = sharedSampleDisagreements(*this, 1);
+  if (!disagreements.empty())
+    throw std::logic_error("mdh invariant: " + disagreements.front().describe());
 }
 
 }  // namespace mdhd::mdh

@@ -90,6 +90,9 @@ class Stock {
   double volume() const;  // mm^3
   SurfaceArea area() const;
   Stats stats() const;
+  // Throws std::logic_error naming the first broken invariant: a cell's own (heightmap
+  // inside its box, cached volume, embedded rows) or two leaves disagreeing on a shared
+  // vertex or edge (shared_samples.h).
   void checkInvariants() const;
   void forEachLeaf(const std::function<void(const LeafView&)>& visit) const;
 
