@@ -1,5 +1,6 @@
 #include "daemon/check_runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -101,8 +102,10 @@ check::Report runCheckJob(const LoadedJob& loaded, const CheckControls& controls
   std::unique_ptr<check::Simulation> sim;
   try {
     kin = std::make_unique<kin::Kinematics>(*job.machine);
+    check::SimulationOptions options = simulationOptions(job.options);
+    options.threads = std::max(1, controls.threads);
     sim = std::make_unique<check::Simulation>(*kin, job.tools, job.stock, fixtureSolids(job),
-                                              simulationOptions(job.options));
+                                              options);
   } catch (const std::exception& e) {
     return errorReport({e.what(), "(job)", "", 0, 0, ""});
   }

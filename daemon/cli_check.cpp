@@ -1,11 +1,13 @@
-// mdhd check JOB.json [--report R.json] [--mesh M.stl]: the whole pre-run check.
+// mdhd check JOB.json [--report R.json] [--mesh M.stl] [--threads N]: the whole pre-run check.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <ostream>
+#include <thread>
 
 #include "daemon/check_runner.h"
 #include "daemon/cli.h"
@@ -19,13 +21,22 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr const char* kUsage =
-    "usage: mdhd check JOB.json [--report REPORT.json] [--mesh RESULT.stl]\n";
+    "usage: mdhd check JOB.json [--report REPORT.json] [--mesh RESULT.stl] [--threads N]\n";
 
 struct CheckArgs {
   std::string job;
   std::string report;
   std::string mesh;
+  int threads = 0;  // 0: one per core
 };
+
+// The cutting threads: a count from 1 to 256, or 0 for the machine's cores.
+bool parseThreads(const std::string& text, int& out) {
+  if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string::npos)
+    return false;
+  out = std::stoi(text);
+  return out <= 256;
+}
 
 bool parseArgs(const Args& args, CheckArgs& out, std::ostream& err) {
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -36,6 +47,12 @@ bool parseArgs(const Args& args, CheckArgs& out, std::ostream& err) {
         return false;
       }
       (a == "--report" ? out.report : out.mesh) = args[++i];
+    } else if (a == "--threads") {
+      if (i + 1 >= args.size() || !parseThreads(args[i + 1], out.threads)) {
+        err << "mdhd check: --threads needs a count from 0 (one per core) to 256\n" << kUsage;
+        return false;
+      }
+      ++i;
     } else if (!a.empty() && a[0] == '-') {
       err << "mdhd check: unknown option '" << a << "'\n" << kUsage;
       return false;
@@ -152,6 +169,9 @@ int runCheck(const Args& args, std::ostream& out, std::ostream& err) {
     const bool tty = &err == &std::cerr && isatty(STDERR_FILENO) == 1;
     ProgressPrinter progress(err, tty);
     CheckControls controls;
+    controls.threads = a.threads > 0
+                           ? a.threads
+                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     controls.progress = [&](double fraction, std::int64_t moves) {
       progress.update(fraction, moves);
     };

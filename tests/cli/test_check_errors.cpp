@@ -136,6 +136,11 @@ TEST_F(CheckScratch, ArgumentsAreChecked) {
   EXPECT_NE(err_.find("unknown option '--frobnicate'"), std::string::npos);
   EXPECT_EQ(run({writeJob(kPocket), "--report"}), 2);
   EXPECT_EQ(run({writeJob(kPocket), "other.json"}), 2);
+  for (const char* bad : {"-1", "two", "", "1000", "2x"}) {
+    EXPECT_EQ(run({writeJob(kPocket), "--threads", bad}), 2) << bad;
+    EXPECT_NE(err_.find("--threads needs a count"), std::string::npos) << bad;
+  }
+  EXPECT_EQ(run({writeJob(kPocket), "--threads"}), 2);
   EXPECT_EQ(run({writeJob(kPocket), "--report", (dir_ / "no" / "dir" / "r.json").string()}), 2);
   EXPECT_NE(err_.find("cannot write the report"), std::string::npos);
 }

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -32,10 +33,12 @@ std::string example(const char* name) {
   return std::string(MDHD_SHARED_DIR) + "/examples/" + name;
 }
 
-CheckRun check(const std::string& job) {
+CheckRun check(const std::string& job, const std::vector<std::string>& extra = {}) {
   std::ostringstream out, err;
   CheckRun r;
-  r.status = runCheck({job}, out, err);
+  std::vector<std::string> args{job};
+  args.insert(args.end(), extra.begin(), extra.end());
+  r.status = runCheck(args, out, err);
   r.err = err.str();
   r.report = json::parse(out.str());
   const auto problems = protocol::reportSchema().validate(r.report);
@@ -127,6 +130,17 @@ TEST(CheckExamples, DonutGrooveOverhangsClean) {
   EXPECT_GT(r.report["overhang"]["cells_not_plus_z"].get<int>(), 0);
   EXPECT_GT(r.report["overhang"]["area_mm2"].get<double>(), 0.0);
   EXPECT_GT(r.report["stats"]["removed_volume_mm3"].get<double>(), 0.0);
+}
+
+// The stock is cut on several threads with bit-identical results: the report is
+// the same, byte for byte, whatever the thread count (timing aside).
+TEST(CheckExamples, ThreadCountChangesNothingButTime) {
+  json one = check(example("side-drill-ac.json"), {"--threads", "1"}).report;
+  json three = check(example("side-drill-ac.json"), {"--threads", "3"}).report;
+  one.erase("timing");
+  three.erase("timing");
+  EXPECT_EQ(one.dump(), three.dump());
+  EXPECT_GT(one["mdh"]["cells"].get<std::int64_t>(), 1);
 }
 
 }  // namespace
