@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/mesh/count_sink.h"
 #include "bench/mesh/donut_surface.h"
 #include "sim/geometry/swept_volume.h"
 #include "sim/geometry/tool.h"
@@ -81,15 +82,6 @@ class ErrorSink final : public mesh::MeshSink {
   const mesh::bench::Donut& donut_;
 };
 
-class CountSink final : public mesh::MeshSink {
- public:
-  void triangle(const mesh::MeshVertex&, const mesh::MeshVertex&, const mesh::MeshVertex&,
-                bool) override {
-    ++triangles;
-  }
-  std::int64_t triangles = 0;
-};
-
 double seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
@@ -113,12 +105,12 @@ Run runOne(const Options& o, int density, bool threeWay) {
   r.directions = st.directions;
 
   const mesh::StockView view(stock);
-  CountSink count;
+  mesh::bench::CountSink count;
   t0 = Clock::now();
   const mesh::MeshStats ms = mesh::meshStock(view, count);
   r.meshSeconds = seconds(t0);
   r.triangles = count.triangles;
-  CountSink count2;
+  mesh::bench::CountSink count2;
   mesh::MeshOptions two;
   two.threads = 2;
   t0 = Clock::now();

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/mesh/count_sink.h"
 #include "daemon/check_runner.h"
 #include "sim/mesh/indexed_mesh.h"
 #include "sim/mesh/mesher.h"
@@ -22,15 +23,6 @@ namespace {
 
 using namespace mdhd;
 using Clock = std::chrono::steady_clock;
-
-class CountSink final : public mesh::MeshSink {
- public:
-  void triangle(const mesh::MeshVertex&, const mesh::MeshVertex&, const mesh::MeshVertex&,
-                bool) override {
-    ++triangles;
-  }
-  std::int64_t triangles = 0;
-};
 
 struct Measured {
   double cutSeconds = 0.0, meshSeconds = 0.0, meshSeconds2 = 0.0;  // 1 and 2 threads
@@ -46,7 +38,7 @@ Measured measure(const std::filesystem::path& job, int repeat) {
     const mesh::StockView view(stock);
     out.meshSeconds = 1e30;
     for (int r = 0; r < repeat; ++r) {
-      CountSink count;
+      mesh::bench::CountSink count;
       const auto t0 = Clock::now();
       const mesh::MeshStats s = mesh::meshStock(view, count);
       out.meshSeconds =
@@ -59,7 +51,7 @@ Measured measure(const std::filesystem::path& job, int repeat) {
     mesh::MeshOptions two;
     two.threads = 2;
     for (int r = 0; r < repeat; ++r) {
-      CountSink count;
+      mesh::bench::CountSink count;
       const auto t0 = Clock::now();
       mesh::meshStock(view, count, two);
       out.meshSeconds2 =

@@ -7,21 +7,14 @@
 
 #include "daemon/shadow_carver.h"
 #include "sim/kinematics/presets.h"
+#include "tests/check/check_fixture.h"
 
 namespace mdhd::shadow::testing {
 
 inline protocol::Job cellJob(std::optional<std::string> program = std::nullopt) {
   protocol::Job job;
   job.machine = kin::presets::threeAxisMill();
-  geom::Tool t;
-  t.number = 1;
-  t.shape = geom::ToolShape::kFlat;
-  t.diameter = 6;
-  t.shank_diameter = 6;
-  t.flute_length = 10;
-  t.length = 40;
-  t.holder = {{20, 10}};
-  job.tools.push_back(t);
+  job.tools.push_back(check::rig::flatTool());
   job.stock = {{0, 0, -20}, {40, 40, 0}};
   job.options.density = 5;
   job.program = std::move(program);
