@@ -210,8 +210,13 @@ void addShadowRoutes(HttpService& http, shadow::ShadowRegistry& shadows, JobStor
              });
   http.route({"GET",
               std::string(kShadows) + "/{id}/events",
-              {{"summary", "Server-Sent Events: pose, alarm, state"},
+              {{"summary", "Server-Sent Events: pose, alarm, alarm_update, state"},
                {"tags", tags},
+               {"description",
+                "event: state, pose, alarm or alarm_update; data: one line of JSON. A collision "
+                "alarm is sent the moment the contact is found, with depth_measured false and "
+                "a first bound of its depth; an alarm_update with the same alarm id follows "
+                "with the measured depth (depth_measured true). docs/shadow.md."},
                {"parameters", idParameter()},
                {"responses",
                 {{"200",

@@ -41,6 +41,17 @@ ShadowCarver::ShadowCarver(const protocol::Job& job, const kin::Kinematics& kin,
                                              cli::simulationOptions(job.options));
 }
 
+void ShadowCarver::setAlarmListener(
+    std::function<void(const check::Collision&, std::size_t episode)> listener) {
+  if (!listener) {
+    sim_->setContactListener(nullptr);
+    return;
+  }
+  sim_->setContactListener([this, listener = std::move(listener)](std::size_t episode) {
+    listener(sim_->collisions()[episode], episode);
+  });
+}
+
 int ShadowCarver::toolOf(const PollSample& s) const {
   if (s.tool) return *s.tool;
   if (track_ != nullptr && cursor_) return track_->at(*cursor_).motion.tool;

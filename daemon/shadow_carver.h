@@ -7,6 +7,7 @@
 // catches up when polls arrive faster than it cuts.
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -48,6 +49,11 @@ class ShadowCarver {
   // `job`, `kin` and `track` (null without a program) must outlive the carver.
   // Throws std::invalid_argument for a stock or tool the engine cannot use.
   ShadowCarver(const protocol::Job& job, const kin::Kinematics& kin, const ProgramTrack* track);
+
+  // Called from inside carve() the moment a contact opens an episode, before the
+  // motion is finished and its depth measured (the collision holds a first bound):
+  // to alarm without waiting. The episode is still listed in CarveResult::alarms.
+  void setAlarmListener(std::function<void(const check::Collision&, std::size_t episode)> listener);
 
   // Cuts the motions up to each sample of the batch, in order.
   CarveResult carve(std::span<const PollSample> batch);

@@ -13,7 +13,9 @@ nlohmann::json vec(const glm::dvec3& v) {
 
 nlohmann::json alarmToJson(const Alarm& alarm, const kin::Machine& machine) {
   nlohmann::json j = protocol::collisionToJson(alarm.collision, &machine);
+  j["id"] = alarm.id;
   j["kind"] = alarm.predicted ? "predicted" : "collision";
+  j["depth_measured"] = alarm.depth_measured;
   if (alarm.predicted) j["time_to_contact_s"] = alarm.time_to_contact_s;
   return j;
 }

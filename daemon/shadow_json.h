@@ -15,10 +15,14 @@ struct Alarm {
   check::Collision collision;      // depth and last_line follow the episode while it lasts
   double time_to_contact_s = 0.0;  // predicted: machine time from the pose of the prediction
   std::size_t episode = 0;         // not predicted: index among the live simulation's episodes
+  std::size_t id = 0;              // index among the session's alarms (set when raised)
+  // False while `collision.depth` is the first bound found when the contact opened;
+  // the measured depth follows in an alarm_update event.
+  bool depth_measured = true;
 };
 
-// A collision entry of the report (collisionToJson) with "kind": "collision" or
-// "predicted" and, when predicted, "time_to_contact_s".
+// A collision entry of the report (collisionToJson) with "id", "kind": "collision"
+// or "predicted", "depth_measured" and, when predicted, "time_to_contact_s".
 nlohmann::json alarmToJson(const Alarm& alarm, const kin::Machine& machine);
 
 // {"joints": {...}, "tool_pose": {"tip": [x,y,z], "axis": [x,y,z]}} of a pose

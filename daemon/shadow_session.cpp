@@ -39,6 +39,11 @@ ShadowSession::ShadowSession(std::string id, ShadowSpec spec, SessionOptions opt
   kin_ = std::make_unique<kin::Kinematics>(*spec_.job.machine);
   if (spec_.job.program) track_ = std::make_unique<ProgramTrack>(spec_.job, *kin_);
   carver_ = std::make_unique<ShadowCarver>(spec_.job, *kin_, track_.get());
+  // A contact is alarmed from inside the motion that makes it, before its depth is
+  // measured and the motion finished: the depth follows in an alarm_update.
+  carver_->setAlarmListener([this](const check::Collision& c, std::size_t episode) {
+    raise({false, c, 0.0, episode, 0, false});
+  });
   if (!spec_.map.line) options_.lookahead = false;  // the program cannot be followed
   if (spec_.job.tools.size() == 1) tool_hint_ = spec_.job.tools.front().number;
 }
@@ -80,9 +85,11 @@ void ShadowSession::setState(ShadowState s, const std::string& reason) {
 }
 
 void ShadowSession::raise(Alarm alarm) {
-  nlohmann::json j = alarmToJson(alarm, *spec_.job.machine);
+  nlohmann::json j;
   {
     std::lock_guard lock(mutex_);
+    alarm.id = alarms_.size();
+    j = alarmToJson(alarm, *spec_.job.machine);
     alarms_.push_back(std::move(alarm));
   }
   events_.publish("alarm", j);

@@ -1,6 +1,7 @@
 // The three threads of a shadow: polling (keeps its rhythm, never blocks on the
 // carving), carving (cuts what was polled, raises alarms) and the look-ahead.
 #include <algorithm>
+#include <set>
 #include <thread>
 
 #include "daemon/shadow_session.h"
@@ -139,12 +140,22 @@ void ShadowSession::carveLoop() {
     CarveResult r;
     std::optional<std::size_t> cursor;
     std::vector<std::pair<double, int>> depths;  // of every episode so far
+    std::vector<nlohmann::json> updates;         // alarms now measured (alarm_update)
+    std::set<std::size_t> announced;             // episodes alarmed already
     {
       std::lock_guard lock(sim_mutex_);
       r = carver_->carve(batch);
       cursor = carver_->cursor();
-      for (const check::Collision& c : carver_->simulation().collisions())
-        depths.emplace_back(c.depth, c.last_line);
+      const std::vector<check::Collision>& all = carver_->simulation().collisions();
+      for (const check::Collision& c : all) depths.emplace_back(c.depth, c.last_line);
+      // Alarms raised from inside this carve: now measured and placed exactly.
+      std::lock_guard alarms_lock(mutex_);
+      for (Alarm& a : alarms_) {
+        if (a.predicted || a.depth_measured || a.episode >= all.size()) continue;
+        a.collision = all[a.episode];
+        a.depth_measured = true;
+        updates.push_back(alarmToJson(a, *spec_.job.machine));
+      }
     }
     const std::size_t first_new = depths.size() - r.alarms.size();
     {
@@ -161,10 +172,14 @@ void ShadowSession::carveLoop() {
         if (a.predicted || a.episode >= depths.size()) continue;
         a.collision.depth = depths[a.episode].first;
         a.collision.last_line = depths[a.episode].second;
+        announced.insert(a.episode);
       }
     }
-    for (std::size_t i = 0; i < r.alarms.size(); ++i)
-      raise({false, r.alarms[i], 0.0, first_new + i});
+    for (const nlohmann::json& u : updates) events_.publish("alarm_update", u);
+    for (std::size_t i = 0; i < r.alarms.size(); ++i) {
+      // Contacts are alarmed from inside the carve already; axis limits are not.
+      if (announced.count(first_new + i) == 0) raise({false, r.alarms[i], 0.0, first_new + i});
+    }
     maybeLookAhead();
     {
       std::lock_guard lock(mutex_);

@@ -83,7 +83,7 @@ double sweptSignedDistance(const geom::SweptVolume& sweep, const geom::ToolPart&
 
 Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& part,
                         const geom::Aabb& within, const LineGrid& grid,
-                        const MaterialLine& material, bool measure) {
+                        const MaterialLine& material, bool measure, double enough) {
   Penetration out;
   const geom::Aabb box = intersect(sweep.bounds(), within);
   if (isEmpty(box) || part.empty()) return out;
@@ -98,6 +98,26 @@ Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& pa
   if (x0 > x1 || y0 > y1) return out;
   const int stride =
       std::max(1, (std::max(x1 - x0, y1 - y0) + kMaxDepthLinesPerAxis) / kMaxDepthLinesPerAxis);
+  // Samples one overlap of line (x, y); true once a sample is deeper than `enough`.
+  const auto sample = [&](double x, double y, double lo, double hi) {
+    const int n = std::clamp(static_cast<int>(std::ceil((hi - lo) / grid.h)) + 1, 2,
+                             kMaxDepthSamplesPerOverlap);
+    for (int k = 0; k < n; ++k) {
+      const glm::dvec3 p{x, y, lo + (hi - lo) * k / (n - 1)};
+      const double depth = -sweptSignedDistance(sweep, part, p);
+      if (depth > out.depth) {
+        out.depth = depth;
+        out.deepest = p;
+        if (depth > enough) return true;
+      }
+    }
+    return false;
+  };
+  const bool early = measure && std::isfinite(enough);
+  struct Found {
+    double length, x, y, lo, hi;
+  };
+  std::vector<Found> found;  // early out: the overlaps, longest (likely deepest) first
   std::vector<geom::Interval> mat, tool, both;
   for (int iy = y0; iy <= y1; iy += stride) {
     for (int ix = x0; ix <= x1; ix += stride) {
@@ -112,20 +132,17 @@ Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& pa
         const double lo = std::max(o.lo, box.lo.z), hi = std::min(o.hi, box.hi.z);
         if (!(hi > lo)) continue;
         out.max_overlap = std::max(out.max_overlap, hi - lo);
-        if (!measure) continue;
-        const int n = std::clamp(static_cast<int>(std::ceil((hi - lo) / grid.h)) + 1, 2,
-                                 kMaxDepthSamplesPerOverlap);
-        for (int k = 0; k < n; ++k) {
-          const glm::dvec3 p{x, y, lo + (hi - lo) * k / (n - 1)};
-          const double depth = -sweptSignedDistance(sweep, part, p);
-          if (depth > out.depth) {
-            out.depth = depth;
-            out.deepest = p;
-          }
-        }
+        if (early)
+          found.push_back({hi - lo, x, y, lo, hi});
+        else if (measure)
+          sample(x, y, lo, hi);
       }
     }
   }
+  std::sort(found.begin(), found.end(),
+            [](const Found& a, const Found& b) { return a.length > b.length; });
+  for (const Found& f : found)
+    if (sample(f.x, f.y, f.lo, f.hi)) break;
   return out;
 }
 

@@ -5,6 +5,7 @@
 // and points of each overlap are measured against the part: depth = how far the
 // point lies inside the part at the pose along the sweep where it lies deepest.
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "sim/geometry/line_solid.h"
@@ -38,9 +39,12 @@ struct Penetration {
 
 // `within`: only this box of the part's bounds is sampled (e.g. its overlap with a
 // fixture); lines outside `grid` are skipped. `measure` false: only max_overlap.
+// `enough`: stops at the first sample deeper than that, sampling the longest overlaps
+// first (a lower bound of the depth: the full measure samples the same points).
 Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& part,
                         const geom::Aabb& within, const LineGrid& grid,
-                        const MaterialLine& material, bool measure = true);
+                        const MaterialLine& material, bool measure = true,
+                        double enough = std::numeric_limits<double>::infinity());
 
 // Signed distance from p to the part swept along the sweep: min over its translations
 // of the min over the translation of the part's distance (each convex body's is

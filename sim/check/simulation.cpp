@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -18,7 +19,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr int kBisections = 12;  // first contact within 1/4096 of a step
+constexpr int kBisections = 12;         // first contact within 1/4096 of a step
+constexpr int kAnnounceBisections = 4;  // a listener hears it within 1/16 of a step
 
 double msSince(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -218,16 +220,57 @@ Collision Simulation::entry(const Step& step, CollisionType type, double f) cons
   return c;
 }
 
-double Simulation::firstContact(
-    const Step& step, const geom::ToolPart& part,
-    const std::function<bool(const geom::SweptVolume&)>& touches) const {
-  if (touches(geom::SweptVolume::at(part, step.a.pose))) return 0.0;
+// The first-contact bisection so far: carried on, it ends where it would in one go.
+struct Simulation::Bracket {
   double lo = 0.0, hi = 1.0;
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (touches(sweep(step, part, mid)) ? hi : lo) = mid;
+  int done = -1;  // bisections made; -1: the step's start not tried yet
+};
+
+Penetration Simulation::contact(const Step& step, const EpisodeKey& key, const geom::ToolPart& part,
+                                const Touches& touches,
+                                const std::function<Penetration(double enough)>& measure) {
+  Bracket bracket;
+  const auto start = [&](int bisections) {
+    Collision c = entry(step, key.type, firstContact(step, part, touches, bracket, bisections));
+    c.part = key.part;
+    c.fixture = key.fixture;
+    return c;
+  };
+  const int line = step.m.pos.line;
+  if (contact_listener_ && !episodes_.isOpen(key)) {
+    // Announce a new contact as soon as a sample proves it and a coarse bisection
+    // places it; measure and place it exactly after.
+    const Penetration first = measure(contact_tolerance_);
+    if (!(first.depth > contact_tolerance_)) return first;
+    episodes_.touch(key, first.depth, line, [&] { return start(kAnnounceBisections); });
+    const std::size_t index = episodes_.collisions().size() - 1;
+    contact_listener_(index);
+    const Collision exact = start(kBisections);
+    Collision& c = episodes_.collisions()[index];
+    c.path_s = exact.path_s;
+    c.joints = exact.joints;
+    c.position = exact.position;
   }
-  return hi;
+  const Penetration p = measure(std::numeric_limits<double>::infinity());
+  if (p.depth > contact_tolerance_)
+    episodes_.touch(key, p.depth, line, [&] { return start(kBisections); });
+  return p;
+}
+
+double Simulation::firstContact(const Step& step, const geom::ToolPart& part,
+                                const Touches& touches, Bracket& bracket, int bisections) const {
+  if (bracket.done < 0) {
+    bracket.done = 0;
+    if (touches(geom::SweptVolume::at(part, step.a.pose))) {
+      bracket.hi = 0.0;
+      bracket.done = kBisections;
+    }
+  }
+  for (; bracket.done < bisections; ++bracket.done) {
+    const double mid = 0.5 * (bracket.lo + bracket.hi);
+    (touches(sweep(step, part, mid)) ? bracket.hi : bracket.lo) = mid;
+  }
+  return bracket.hi;
 }
 
 void Simulation::runStep(const gcode::Motion& m, const kin::JointPath& path, const ToolParts* parts,
@@ -267,20 +310,16 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
         stock_->solidIntervals(2, ix, iy, out);
       };
       const geom::Aabb all{glm::dvec3(-INFINITY), glm::dvec3(INFINITY)};
-      const Penetration p =
-          penetration(step.cutter, step.parts.cutter, all, stockLines(*stock_), material);
-      if (p.depth > contact_tolerance_) {
-        const CollisionType type =
-            rapid ? CollisionType::kRapidIntoStock : CollisionType::kSpindleOffCut;
-        episodes_.touch({type, ToolPartName::kCutter, -1, -1}, p.depth, m.pos.line, [&] {
-          const double f = firstContact(step, step.parts.cutter, [&](const geom::SweptVolume& s) {
-            return stock_->probe(s, contact_tolerance_).touched;
-          });
-          Collision c = entry(step, type, f);
-          c.part = ToolPartName::kCutter;
-          return c;
-        });
-      }
+      const CollisionType type =
+          rapid ? CollisionType::kRapidIntoStock : CollisionType::kSpindleOffCut;
+      const auto measure = [&](double enough) {
+        return penetration(step.cutter, step.parts.cutter, all, stockLines(*stock_), material, true,
+                           enough);
+      };
+      contact(
+          step, {type, ToolPartName::kCutter, -1, -1}, step.parts.cutter,
+          [&](const geom::SweptVolume& s) { return stock_->probe(s, contact_tolerance_).touched; },
+          measure);
     }
   }
   ScopeTimer timer(timing_.cut_ms);
@@ -324,16 +363,15 @@ void Simulation::stockContacts(const Step& step) {
       episodes_.touch(key, 0.0, step.m.pos.line, [] { return Collision{}; });
       continue;
     }
-    const Penetration p = penetration(*check.sweep, check.part, all, stockLines(*stock_), material);
+    const auto measure = [&](double enough) {
+      return penetration(*check.sweep, check.part, all, stockLines(*stock_), material, true,
+                         enough);
+    };
+    const Penetration p = contact(
+        step, key, check.part,
+        [&](const geom::SweptVolume& s) { return stock_->probe(s, contact_tolerance_).touched; },
+        measure);
     if (!(p.depth > contact_tolerance_)) continue;
-    episodes_.touch(key, p.depth, step.m.pos.line, [&] {
-      const double f = firstContact(step, check.part, [&](const geom::SweptVolume& s) {
-        return stock_->probe(s, contact_tolerance_).touched;
-      });
-      Collision c = entry(step, check.type, f);
-      c.part = check.name;
-      return c;
-    });
     episodes_.noteOverlap(key, overlap.max_length);
   }
 }
@@ -372,17 +410,18 @@ void Simulation::fixtureContacts(const Step& step) {
           continue;
         }
       }
-      const Penetration p = penetration(*part.sweep, part.part, fb, lines, material);
+      const auto measure = [&](double enough) {
+        return penetration(*part.sweep, part.part, fb, lines, material, true, enough);
+      };
+      // Only whether it touches: the first sample over the tolerance settles it.
+      const Penetration p = contact(
+          step, key, part.part,
+          [&](const geom::SweptVolume& s) {
+            return penetration(s, part.part, fb, lines, material, true, contact_tolerance_).depth >
+                   contact_tolerance_;
+          },
+          measure);
       if (!(p.depth > contact_tolerance_)) continue;
-      episodes_.touch(key, p.depth, step.m.pos.line, [&] {
-        const double f = firstContact(step, part.part, [&](const geom::SweptVolume& s) {
-          return penetration(s, part.part, fb, lines, material).depth > contact_tolerance_;
-        });
-        Collision c = entry(step, CollisionType::kFixtureContact, f);
-        c.part = part.name;
-        c.fixture = static_cast<int>(i);
-        return c;
-      });
       episodes_.noteOverlap(key, p.max_overlap);
     }
   }

@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sim/check/contact_depth.h"
 #include "sim/check/episodes.h"
 #include "sim/check/motion_steps.h"
 #include "sim/check/report.h"
@@ -77,6 +78,16 @@ class Simulation final : public gcode::MotionSink {
   void setProgress(std::function<void(const gcode::SourcePos&, std::int64_t)> progress) {
     progress_ = std::move(progress);
   }
+  // Called the moment a contact opens a collision episode, before its depth is
+  // measured in full: collisions()[episode] then holds a first bound of its depth
+  // (over the contact tolerance) and its place within 1/16 of a step (path_s,
+  // joints, position); the same step refines both to what they are without a
+  // listener right after (the same bisection carried on, the full depth measure).
+  // With a listener a new contact costs one early-out depth pass more; the report
+  // is the same. Forks do not inherit it.
+  void setContactListener(std::function<void(std::size_t episode)> listener) {
+    contact_listener_ = std::move(listener);
+  }
   // Checked at every step; raising it makes motion() throw Cancelled promptly.
   void setCancelFlag(const std::atomic<bool>* cancel) { cancel_ = cancel; }
 
@@ -114,8 +125,13 @@ class Simulation final : public gcode::MotionSink {
   void stockContacts(const Step& step);
   void fixtureContacts(const Step& step);
   Collision entry(const Step& step, CollisionType type, double f) const;
-  double firstContact(const Step& step, const geom::ToolPart& part,
-                      const std::function<bool(const geom::SweptVolume&)>& touches) const;
+  struct Bracket;
+  using Touches = std::function<bool(const geom::SweptVolume&)>;
+  Penetration contact(const Step& step, const EpisodeKey& key, const geom::ToolPart& part,
+                      const Touches& touches,
+                      const std::function<Penetration(double enough)>& measure);
+  double firstContact(const Step& step, const geom::ToolPart& part, const Touches& touches,
+                      Bracket& bracket, int bisections) const;
   geom::SweptVolume sweep(const Step& step, const geom::ToolPart& part, double f) const;
   void checkCancel() const;
 
@@ -135,6 +151,7 @@ class Simulation final : public gcode::MotionSink {
   std::chrono::steady_clock::time_point started_;
   std::function<void(const gcode::SourcePos&, std::int64_t)> progress_;
   const std::atomic<bool>* cancel_ = nullptr;
+  std::function<void(std::size_t)> contact_listener_;
 };
 
 }  // namespace mdhd::check

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "tests/shadow/shadow_fixture.h"
 
@@ -103,6 +104,50 @@ TEST(ShadowCarver, TheProgramSaysWhichMovesAreRapids) {
   EXPECT_NEAR(r.alarms[0].depth, 1.0, 0.2);
   ASSERT_TRUE(carver.cursor());
   EXPECT_EQ(track.at(*carver.cursor()).motion.pos.line, 8);
+}
+
+TEST(ShadowCarver, AContactIsHeardBeforeItsDepthIsMeasuredAndTheDepthIsTheSame) {
+  const protocol::Job job = cellJob(
+      "G21 G90 G17\nT1 M6\nG43 H1\nM3 S9000\n"  // 1-4
+      "G0 X10 Y10 Z5\n"                         // 5
+      "G0 Z-1\n"                                // 6: a rapid into the stock
+      "G1 Z-2 F300\n"                           // 7
+      "G0 Z5\nM5\nM30\n");
+  const kin::Kinematics kin(*job.machine);
+  const ProgramTrack track(job, kin);
+  const std::vector<PollSample> batch{at(10, 10, 5, 0, 5), at(10, 10, 2, 2, 6),
+                                      at(10, 10, -1, 4, 6), at(10, 10, -2, 200, 7),
+                                      at(10, 10, 5, 210, 8)};
+  ShadowCarver heard(job, kin, &track);
+  std::vector<std::pair<check::Collision, std::size_t>> calls;
+  heard.setAlarmListener(
+      [&](const check::Collision& c, std::size_t episode) { calls.emplace_back(c, episode); });
+  const CarveResult r = heard.carve(batch);
+  ShadowCarver quiet(job, kin, &track);
+  const CarveResult q = quiet.carve(batch);
+
+  ASSERT_EQ(calls.size(), 1u);
+  ASSERT_EQ(r.alarms.size(), 1u);
+  const check::Collision& first = calls[0].first;
+  EXPECT_EQ(calls[0].second, 0u);
+  EXPECT_EQ(first.type, check::CollisionType::kRapidIntoStock);
+  EXPECT_EQ(first.line, 6);
+  EXPECT_EQ(first.block, "G0 Z-1");
+  // Placed by a coarse bisection first: at or after the exact first contact,
+  // within 1/16 of the step (the rapid is 3 mm long).
+  EXPECT_GE(first.path_s, r.alarms[0].path_s);
+  EXPECT_LE(glm::distance(first.position, r.alarms[0].position), 3.0 / 16 + 1e-9);
+  // A first bound: over the contact tolerance, not over the measured depth.
+  EXPECT_GT(first.depth, heard.simulation().contactTolerance());
+  EXPECT_LE(first.depth, r.alarms[0].depth);
+  // The listener changes when the alarm is known, not what it says.
+  ASSERT_EQ(q.alarms.size(), 1u);
+  EXPECT_EQ(r.alarms[0].depth, q.alarms[0].depth);
+  EXPECT_EQ(r.alarms[0].position, q.alarms[0].position);
+  EXPECT_EQ(r.alarms[0].joints, q.alarms[0].joints);
+  EXPECT_EQ(r.alarms[0].path_s, q.alarms[0].path_s);
+  EXPECT_EQ(heard.simulation().collisions().size(), quiet.simulation().collisions().size());
+  EXPECT_EQ(heard.simulation().stock().volume(), quiet.simulation().stock().volume());
 }
 
 }  // namespace

@@ -71,11 +71,28 @@ TEST(ShadowCrash, AlarmsAsCheckAtTheSameLinesEachPredictedFirst) {
   for (const check::Collision& c : run.check.collisions) expected.emplace_back(c.type, c.line);
   ASSERT_EQ(expected.size(), 3u);                         // rapid 7, holder 11, shank 12
   std::map<int, std::uint64_t> predicted_at, alarmed_at;  // event id by line
+  // A contact's alarm comes with a first bound of its depth, its measured depth in
+  // an alarm_update of the same id after it.
+  std::map<std::uint64_t, double> bound_of;  // alarm id -> first depth
+  std::size_t updates = 0;
   for (const ShadowEvent& e : run.events) {
-    if (e.type != "alarm") continue;
     const nlohmann::json j = nlohmann::json::parse(e.data);
+    if (e.type == "alarm_update") {
+      ++updates;
+      EXPECT_EQ(j["kind"], "collision");
+      EXPECT_TRUE(j["depth_measured"].get<bool>());
+      ASSERT_TRUE(bound_of.count(j["id"].get<std::uint64_t>())) << "update before alarm";
+      EXPECT_GE(j["depth"].get<double>(), bound_of.at(j["id"].get<std::uint64_t>()));
+      continue;
+    }
+    if (e.type != "alarm") continue;
     (j["kind"] == "predicted" ? predicted_at : alarmed_at).emplace(j["line"].get<int>(), e.id);
+    if (j["kind"] == "collision") {
+      EXPECT_FALSE(j["depth_measured"].get<bool>());
+      bound_of.emplace(j["id"].get<std::uint64_t>(), j["depth"].get<double>());
+    }
   }
+  EXPECT_EQ(updates, bound_of.size());
   for (const Alarm& a : run.alarms) {
     if (a.predicted) {
       EXPECT_GT(a.time_to_contact_s, 0.0);
