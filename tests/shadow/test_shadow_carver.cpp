@@ -2,6 +2,7 @@
 // by the engine; straight runs merged, standing still and resyncs cut nothing,
 // the kind of move taken from the program at the reported line.
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -13,6 +14,21 @@ namespace {
 
 using testing::at;
 using testing::cellJob;
+
+// Line 6 rapids 1 mm into the stock; the polls follow the program line by line.
+protocol::Job rapidIntoStockJob() {
+  return cellJob(
+      "G21 G90 G17\nT1 M6\nG43 H1\nM3 S9000\n"  // 1-4
+      "G0 X10 Y10 Z5\n"                         // 5
+      "G0 Z-1\n"                                // 6: a rapid into the stock
+      "G1 Z-2 F300\n"                           // 7
+      "G0 Z5\nM5\nM30\n");
+}
+
+std::vector<PollSample> rapidIntoStockSamples() {
+  return {at(10, 10, 5, 0, 5), at(10, 10, 2, 2, 6), at(10, 10, -1, 4, 6), at(10, 10, -2, 200, 7),
+          at(10, 10, 5, 210, 8)};
+}
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -85,18 +101,11 @@ TEST(ShadowCarver, WithoutTheProgramEveryMoveIsAFeedAndSpindleOffIsAnAlarm) {
 }
 
 TEST(ShadowCarver, TheProgramSaysWhichMovesAreRapids) {
-  const protocol::Job job = cellJob(
-      "G21 G90 G17\nT1 M6\nG43 H1\nM3 S9000\n"  // 1-4
-      "G0 X10 Y10 Z5\n"                         // 5
-      "G0 Z-1\n"                                // 6: a rapid into the stock
-      "G1 Z-2 F300\n"                           // 7
-      "G0 Z5\nM5\nM30\n");
+  const protocol::Job job = rapidIntoStockJob();
   const kin::Kinematics kin(*job.machine);
   const ProgramTrack track(job, kin);
   ShadowCarver carver(job, kin, &track);
-  const CarveResult r = carver.carve(
-      std::vector<PollSample>{at(10, 10, 5, 0, 5), at(10, 10, 2, 2, 6), at(10, 10, -1, 4, 6),
-                              at(10, 10, -2, 200, 7), at(10, 10, 5, 210, 8)});
+  const CarveResult r = carver.carve(rapidIntoStockSamples());
   ASSERT_EQ(r.alarms.size(), 1u);
   EXPECT_EQ(r.alarms[0].type, check::CollisionType::kRapidIntoStock);
   EXPECT_EQ(r.alarms[0].line, 6);
@@ -107,17 +116,10 @@ TEST(ShadowCarver, TheProgramSaysWhichMovesAreRapids) {
 }
 
 TEST(ShadowCarver, AContactIsHeardBeforeItsDepthIsMeasuredAndTheDepthIsTheSame) {
-  const protocol::Job job = cellJob(
-      "G21 G90 G17\nT1 M6\nG43 H1\nM3 S9000\n"  // 1-4
-      "G0 X10 Y10 Z5\n"                         // 5
-      "G0 Z-1\n"                                // 6: a rapid into the stock
-      "G1 Z-2 F300\n"                           // 7
-      "G0 Z5\nM5\nM30\n");
+  const protocol::Job job = rapidIntoStockJob();
   const kin::Kinematics kin(*job.machine);
   const ProgramTrack track(job, kin);
-  const std::vector<PollSample> batch{at(10, 10, 5, 0, 5), at(10, 10, 2, 2, 6),
-                                      at(10, 10, -1, 4, 6), at(10, 10, -2, 200, 7),
-                                      at(10, 10, 5, 210, 8)};
+  const std::vector<PollSample> batch = rapidIntoStockSamples();
   ShadowCarver heard(job, kin, &track);
   std::vector<std::pair<check::Collision, std::size_t>> calls;
   heard.setAlarmListener(
