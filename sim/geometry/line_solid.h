@@ -26,6 +26,15 @@ class LineSolid {
   // Appends to `out` the intervals of coordinate `axis` (0 x, 1 y, 2 z) where the line
   // {p : p[(axis+1)%3] = u, p[(axis+2)%3] = v} lies inside the solid: sorted, disjoint.
   virtual void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const = 0;
+  // A prism band: a grid axis `axis` and a range [lo, hi] of coordinates on it over
+  // which every section square to it is the same (a tool on a grid axis translated,
+  // along its cylinder). Lines square to `axis` that differ only in their coordinate
+  // on it within [lo, hi] then meet the solid alike, so one answers for all (a wall
+  // beside the tool is hundreds of such lines per step). False: no such band.
+  virtual bool prismBand(int& axis, double& lo, double& hi) const {
+    (void)axis, (void)lo, (void)hi;
+    return false;
+  }
 };
 
 }  // namespace mdhd::geom

@@ -392,6 +392,31 @@ void SweptVolume::lineIntervals(int axis, double u, double v, std::vector<Interv
   intervals(axis, u, v, false, out);
 }
 
+bool SweptVolume::prismBand(int& axis, double& lo, double& hi) const {
+  if (bodies_.empty()) return false;
+  const int a = bodies_.front().alongAxis;
+  if (a < 0) return false;
+  double blo = -std::numeric_limits<double>::infinity(), bhi = -blo;
+  for (const SweptBody& body : bodies_) {
+    if (body.alongAxis != a) return false;
+    const AxialProfile& p = profiles_[body.profile];
+    const double w = body.axis[a];  // +-1
+    const double t0 = body.tip[a], t1 = t0 + body.length * body.dir[a];
+    // Heights h = (c - tip) * w in [riseTop, top] at both ends of the move.
+    const double lo1 = w > 0 ? std::max(t0, t1) + p.riseTop : std::max(t0, t1) - p.top;
+    const double hi1 = w > 0 ? std::min(t0, t1) + p.top : std::min(t0, t1) - p.riseTop;
+    // A body that does not reach the band leaves its sections alone.
+    if (body.box.hi[a] < blo || body.box.lo[a] > bhi) continue;
+    blo = std::max(blo, lo1);
+    bhi = std::min(bhi, hi1);
+  }
+  if (!(bhi > blo)) return false;
+  axis = a;
+  lo = blo;
+  hi = bhi;
+  return true;
+}
+
 void SweptVolume::generalLineIntervals(int axis, double u, double v,
                                        std::vector<Interval>& out) const {
   intervals(axis, u, v, true, out);

@@ -61,6 +61,10 @@ class SweptVolume final : public LineSolid {
   // square to it (cross_sweep.h) in closed form; every other line and body goes
   // through the general solver (section_solver.h).
   void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const override;
+  // Every body on one grid axis, translated: the coordinates where each body's
+  // section is its widest disk at every point of its move (profile from riseTop to
+  // top), intersected over the bodies that reach there.
+  bool prismBand(int& axis, double& lo, double& hi) const override;
   // The same through the general solver for every body and line: the reference the
   // closed forms are tested and benchmarked against.
   void generalLineIntervals(int axis, double u, double v, std::vector<Interval>& out) const;

@@ -70,6 +70,28 @@ IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid,
          n};
     n += l.nu * static_cast<std::size_t>(touched_.points(v));
   }
+  // Lines square to the band's axis at its grid levels meet the solid alike: they
+  // share the slot of the band's first level.
+  int bandAxis = -1;
+  double bandLo = 0.0, bandHi = 0.0;
+  if (solid.prismBand(bandAxis, bandLo, bandHi) && bandAxis >= 0 && bandAxis < 3) {
+    const double glo = std::ceil(grid.toGrid(bandAxis, bandLo));
+    const double ghi = std::floor(grid.toGrid(bandAxis, bandHi));
+    // Clamped into the box, so the band's first level is a line of the box.
+    const int klo = static_cast<int>(
+        std::clamp(glo, static_cast<double>(touched_.lo[bandAxis]), grid.cubes[bandAxis] + 1.0));
+    const int khi = static_cast<int>(std::clamp(ghi, -1.0, grid.cubes[bandAxis] + 1.0));
+    if (std::isfinite(glo) && std::isfinite(ghi) && khi > klo) {
+      band_ = {bandAxis, klo, khi};
+      for (int a = 0; a < 3; ++a) {
+        if (a == bandAxis) continue;
+        Lines& l = lines_[a];
+        (axisU(a) == bandAxis ? l.bandOnU : l.bandOnV) = true;
+        l.bandLo = klo;
+        l.bandHi = khi;
+      }
+    }
+  }
   if (store_ == nullptr) {
     owned_ = std::make_unique<LineStore>();
     store_ = owned_.get();

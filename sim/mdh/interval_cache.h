@@ -70,12 +70,22 @@ class IntervalCache {
     if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
     const Lines& l = lines_[axis];
     if (iu < l.ulo || iu > l.uhi || iv < l.vlo || iv > l.vhi) return {};
+    // Inside the solid's prism band one line answers for the whole stack.
+    if (l.bandOnU && iu > l.bandLo && iu <= l.bandHi) iu = l.bandLo;
+    if (l.bandOnV && iv > l.bandLo && iv <= l.bandHi) iv = l.bandLo;
     const std::size_t i =
         l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
     if (store_->states_[i].load(std::memory_order_acquire) != stamp_) fillOnce(axis, iu, iv, i);
     const LineStore::Slot& slot = store_->slots_[i];
     return std::span<const Span>(slot.data, slot.count);
   }
+  // The solid's prism band (LineSolid::prismBand) as grid levels on `axis`: lines
+  // square to it at levels in (lo, hi] are the line at lo. axis -1: none.
+  struct PrismBand {
+    int axis = -1, lo = 0, hi = -1;
+    bool holds(int level) const { return level > lo && level <= hi; }
+  };
+  const PrismBand& prismBand() const { return band_; }
   // Whether several threads may ask for lines at once (the default). A cache
   // used by one thread skips the atomic claim of a line.
   void setShared(bool shared) { shared_ = shared; }
@@ -87,6 +97,9 @@ class IntervalCache {
   struct Lines {
     int ulo = 1, uhi = 0, vlo = 1, vhi = 0;  // empty unless the box is not
     std::size_t nu = 0, base = 0;
+    // The prism band's grid levels on the u or the v coordinate (LineSolid::prismBand).
+    bool bandOnU = false, bandOnV = false;
+    int bandLo = 0, bandHi = -1;
   };
   [[noreturn]] static void wrongAxis();
   void fillOnce(int axis, int iu, int iv, std::size_t i) const;
@@ -101,6 +114,7 @@ class IntervalCache {
   unsigned axes_ = 7u;
   bool shared_ = true;
   std::array<Lines, 3> lines_{};  // first slot of each axis's lines
+  PrismBand band_;
   mutable std::atomic<std::size_t> queries_{0};
 };
 

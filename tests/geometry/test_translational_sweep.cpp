@@ -241,3 +241,68 @@ TEST(TranslationalSweep, DegenerateMovesStayFiniteAndConsistent) {
 
 }  // namespace
 }  // namespace mdhd::geom
+
+namespace mdhd::geom {
+namespace {
+
+TEST(TranslationalSweep, PrismBandIsWhereEverySectionIsTheWidestDisk) {
+  // A ball (R 3, flutes 12) on +z moving down and sideways: from z = 1 to z = -1. Its
+  // sections are the stadium for max(tip z) + R <= c <= min(tip z) + flutes.
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kBall), ToolPartKind::kCutter);
+  const glm::dvec3 z(0, 0, 1);
+  const SweptVolume s = SweptVolume::between(part, {{0, 0, 1}, z}, {{4, 1, -1}, z}, 0, 0.01);
+  int axis = -1;
+  double lo = 0, hi = 0;
+  ASSERT_TRUE(s.prismBand(axis, lo, hi));
+  EXPECT_EQ(axis, 2);
+  EXPECT_NEAR(lo, 1.0 + 3.0, 1e-12);
+  EXPECT_NEAR(hi, -1.0 + 12.0, 1e-12);
+  // Lines along x and y at heights inside it meet the sweep alike; just below it, the
+  // ball's sections are smaller.
+  // The line along x (0) or y (1) at `across` on the other horizontal axis, height c.
+  const auto line = [&](int along, double across, double c) {
+    std::vector<Interval> out;
+    if (along == 0)
+      s.lineIntervals(0, across, c, out);
+    else
+      s.lineIntervals(1, c, across, out);
+    return out;
+  };
+  for (int along : {0, 1}) {
+    const std::vector<Interval> ref = line(along, 0.7, lo);
+    ASSERT_EQ(ref.size(), 1u);
+    for (double c = lo; c <= hi; c += 0.37) {
+      const std::vector<Interval> at = line(along, 0.7, c);
+      ASSERT_EQ(at.size(), 1u) << c;
+      EXPECT_NEAR(at[0].lo, ref[0].lo, 1e-12) << c;
+      EXPECT_NEAR(at[0].hi, ref[0].hi, 1e-12) << c;
+    }
+    // Below it (0.5 over the first tip) the ball's smaller sections show.
+    const std::vector<Interval> below = line(along, 0.7, 1.5);
+    ASSERT_EQ(below.size(), 1u);
+    EXPECT_GT(std::abs(below[0].lo - ref[0].lo) + std::abs(below[0].hi - ref[0].hi), 0.1);
+  }
+  // An upside-down tool (-z): the band mirrors.
+  const SweptVolume down = SweptVolume::between(part, {{0, 0, 10}, -z}, {{1, 0, 10}, -z}, 0, 0.01);
+  ASSERT_TRUE(down.prismBand(axis, lo, hi));
+  EXPECT_EQ(axis, 2);
+  EXPECT_NEAR(lo, 10.0 - 12.0, 1e-12);
+  EXPECT_NEAR(hi, 10.0 - 3.0, 1e-12);
+}
+
+TEST(TranslationalSweep, NoPrismBandOffTheGridAxesOrWhenTheAxisTurns) {
+  const ToolPart part = makeToolPart(makeTool(ToolShape::kBall), ToolPartKind::kCutter);
+  int axis = -1;
+  double lo = 0, hi = 0;
+  const glm::dvec3 tilted = glm::normalize(glm::dvec3(0.1, 0, 1));
+  EXPECT_FALSE(SweptVolume::between(part, {{0, 0, 0}, tilted}, {{3, 0, 0}, tilted}, 0, 0.01)
+                   .prismBand(axis, lo, hi));
+  EXPECT_FALSE(SweptVolume::between(part, {{0, 0, 0}, {0, 0, 1}}, {{3, 0, 0}, tilted}, 0, 0.01)
+                   .prismBand(axis, lo, hi));
+  // A move longer along the axis than the cylinder: no level is cylinder all the way.
+  EXPECT_FALSE(SweptVolume::between(part, {{0, 0, 0}, {0, 0, 1}}, {{0, 0, 20}, {0, 0, 1}}, 0, 0.01)
+                   .prismBand(axis, lo, hi));
+}
+
+}  // namespace
+}  // namespace mdhd::geom

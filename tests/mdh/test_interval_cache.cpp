@@ -1,9 +1,12 @@
 #include "sim/mdh/interval_cache.h"
 
 #include <atomic>
+#include <cmath>
 
 #include <gtest/gtest.h>
 
+#include "sim/geometry/swept_volume.h"
+#include "sim/geometry/tool_part.h"
 #include "sim/mdh/stock.h"
 #include "tests/mdh/analytic_solids.h"
 
@@ -19,6 +22,9 @@ class CountingSolid : public geom::LineSolid {
                      std::vector<geom::Interval>& out) const override {
     ++calls;
     inner_.lineIntervals(axis, u, v, out);
+  }
+  bool prismBand(int& axis, double& lo, double& hi) const override {
+    return inner_.prismBand(axis, lo, hi);
   }
   mutable std::atomic<int> calls{0};
 
@@ -116,6 +122,57 @@ TEST(IntervalCache, AStockCutAsksEachLineAtMostOnce) {
   // The touched box has 25 x 25 x 13 vertices; three families of lines.
   EXPECT_GT(counting.calls, 0);
   EXPECT_LE(counting.calls, 25 * 13 + 13 * 25 + 25 * 25);
+}
+
+}  // namespace
+}  // namespace mdhd::mdh
+
+namespace mdhd::mdh {
+namespace {
+
+TEST(IntervalCache, LinesInTheToolsPrismBandShareOneQueryAndMatchTheirOwn) {
+  // A vertical ball swept sideways: every x and y line above its ball part asks the
+  // one line at the band's first level, and gets what it would have got itself.
+  const GridSpec g = grid();
+  geom::Tool tool;
+  tool.number = 1;
+  tool.shape = geom::ToolShape::kBall;
+  tool.diameter = 2.0;
+  tool.flute_length = 3.0;
+  tool.length = 20.0;
+  tool.shank_diameter = 2.0;
+  const geom::ToolPart part = geom::makeToolPart(tool, geom::ToolPartKind::kCutter);
+  const glm::dvec3 z(0, 0, 1);
+  const geom::SweptVolume sweep =
+      geom::SweptVolume::between(part, {{4.0, 3.9, 2.0}, z}, {{5.1, 4.3, 1.8}, z}, 0, 0.01);
+  CountingSolid counting(sweep);
+  IntervalCache cache(g, counting);
+  const IntervalCache::PrismBand& band = cache.prismBand();
+  ASSERT_EQ(band.axis, 2);
+  // From the highest ball centre (z 2 + 1) to the lowest cylinder top (z 1.8 + 3).
+  EXPECT_EQ(band.lo, static_cast<int>(std::ceil(g.toGrid(2, 2.0 + 1.0))));
+  EXPECT_EQ(band.hi, static_cast<int>(std::floor(g.toGrid(2, 1.8 + 3.0))));
+  ASSERT_GE(band.hi - band.lo, 17);
+  const GridBox& t = cache.touched();
+  std::vector<geom::Interval> own;
+  std::size_t lines = 0;
+  for (int axis : {0, 1}) {
+    const int u = axisU(axis), v = axisV(axis);
+    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
+      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu, ++lines) {
+        own.clear();
+        sweep.lineIntervals(axis, g.toMm(u, iu), g.toMm(v, iv), own);
+        const auto line = cache.line(axis, iu, iv);
+        ASSERT_EQ(line.size(), own.size()) << axis << " " << iu << " " << iv;
+        for (std::size_t k = 0; k < own.size(); ++k) {
+          EXPECT_NEAR(line[k].lo, g.toGrid(axis, own[k].lo), 1e-9);
+          EXPECT_NEAR(line[k].hi, g.toGrid(axis, own[k].hi), 1e-9);
+        }
+      }
+  }
+  // All but the first of the band's levels cost nothing.
+  const std::size_t across = static_cast<std::size_t>(t.points(0) + t.points(1));
+  EXPECT_EQ(cache.queries(), lines - static_cast<std::size_t>(band.hi - band.lo) * across);
 }
 
 }  // namespace
