@@ -34,10 +34,10 @@ namespace {
 double snap(double g) {
   // std::round without the libm call (the hottest line of a fill); far from
   // the grid's range, where the cast could overflow, std::round itself.
-  const double r =
-      std::abs(g) < 1e15
-          ? static_cast<double>(static_cast<std::int64_t>(g >= 0.0 ? g + 0.5 : g - 0.5))
-          : std::round(g);
+  // Adding and taking away 1.5 * 2^52 rounds to the nearest integer (ties to
+  // even, which differ from round() only at .5, where nothing snaps anyway).
+  constexpr double kMagic = 6755399441055744.0;
+  const double r = std::abs(g) < 1e15 ? (g + kMagic) - kMagic : std::round(g);
   return std::abs(g - r) < 1e-9 ? r : g;
 }
 
@@ -108,7 +108,6 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
   spans.clear();
   const int u = axisU(axis), v = axisV(axis);
   solid_.lineIntervals(axis, grid_.toMm(u, iu), grid_.toMm(v, iv), buf);
-  queries_.fetch_add(1, std::memory_order_relaxed);
   for (const geom::Interval& i : buf) {
     const Span s{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
     if (s.hi > s.lo) spans.push_back(s);  // drops NaN and inverted intervals
@@ -135,6 +134,18 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
   slot.data = heap.get();
   const std::lock_guard lock(store_->overflowMutex_);
   store_->overflow_.push_back(std::move(heap));
+}
+
+std::size_t IntervalCache::queries() const {
+  std::size_t n = 0;
+  if (store_ == nullptr) return n;  // an empty box asks for nothing
+  for (const Lines& l : lines_) {
+    const std::size_t end =
+        l.base + l.nu * static_cast<std::size_t>(std::max(0, l.vhi - l.vlo + 1));
+    for (std::size_t i = l.base; i < end; ++i)
+      n += store_->states_[i].load(std::memory_order_relaxed) == stamp_;
+  }
+  return n;
 }
 
 void IntervalCache::wrongAxis() {

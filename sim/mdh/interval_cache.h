@@ -89,8 +89,10 @@ class IntervalCache {
   // Whether several threads may ask for lines at once (the default). A cache
   // used by one thread skips the atomic claim of a line.
   void setShared(bool shared) { shared_ = shared; }
-  // How many lineIntervals calls were made (for tests of "once per line").
-  std::size_t queries() const { return queries_.load(std::memory_order_relaxed); }
+  // How many lineIntervals calls were made (for tests of "once per line"): the
+  // lines filled this step, counted over the store (no shared counter to contend
+  // for while cutting).
+  std::size_t queries() const;
 
  private:
   // The lines of one axis in the store: (iu, iv) ranges and first slot.
@@ -115,7 +117,6 @@ class IntervalCache {
   bool shared_ = true;
   std::array<Lines, 3> lines_{};  // first slot of each axis's lines
   PrismBand band_;
-  mutable std::atomic<std::size_t> queries_{0};
 };
 
 }  // namespace mdhd::mdh

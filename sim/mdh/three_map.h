@@ -48,12 +48,18 @@ class ThreeMap {
   double fullHeight() const { return dir_.sign > 0 ? box_.hi[dir_.axis] : box_.lo[dir_.axis]; }
 
   // Number of solid vertices of a column with height h (inline: the hottest call).
+  // Inside (lo, hi) the height is >= 0, so a truncation is its floor: no libm call.
   int solidCount(double h) const {
     const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
-    if (!(h > -kInf && h < kInf)) return (dir_.sign > 0) == (h > 0) ? hi - lo + 1 : 0;
-    const int n = dir_.sign > 0 ? static_cast<int>(std::floor(h)) - lo + 1
-                                : hi - static_cast<int>(std::ceil(h)) + 1;
-    return n < 0 ? 0 : (n > hi - lo + 1 ? hi - lo + 1 : n);
+    if (dir_.sign > 0) {
+      if (!(h >= lo)) return 0;  // -inf and NaN too
+      if (h >= hi) return hi - lo + 1;
+      return static_cast<int>(h) - lo + 1;
+    }
+    if (!(h <= hi)) return h != h ? hi - lo + 1 : 0;
+    if (h <= lo) return hi - lo + 1;
+    const int c = static_cast<int>(h);
+    return hi - (c < h ? c + 1 : c) + 1;
   }
   bool solidAt(double h, int level) const { return dir_.sign > 0 ? level <= h : level >= h; }
   // The grid levels where columns h1 and h2 differ: first, first+1, ... (count).
