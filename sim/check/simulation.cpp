@@ -204,7 +204,11 @@ geom::SweptVolume Simulation::sweep(const Step& step, const geom::ToolPart& part
   const double tol = part.kind == geom::ToolPartKind::kCutter
                          ? options_.tolerance
                          : std::max(options_.tolerance, contact_tolerance_);
-  return geom::SweptVolume::between(part, step.a.pose, end, options_.steps > 0 ? 1 : 0, tol);
+  // Each segment of a turning move holds its middle pose's axis: one translation
+  // fewer per step for the same errorBound() (the end poses are then within it too,
+  // and consecutive steps overlap there).
+  return geom::SweptVolume::between(part, step.a.pose, end, options_.steps > 0 ? 1 : 0, tol,
+                                    geom::SweepEnds::kMidpoints);
 }
 
 Collision Simulation::entry(const Step& step, CollisionType type, double f) const {
