@@ -66,7 +66,8 @@ class IntervalCache {
   // Open intervals of the tool along the line of `axis` through vertex indices
   // (iu, iv) on axes (axis+1)%3 and (axis+2)%3; empty outside the bounds.
   // Throws std::logic_error for an axis the cache was not made for.
-  std::span<const Span> line(int axis, int iu, int iv) const {
+  // Always inlined: the hottest call of a cut (every column and crossing asks).
+  [[gnu::always_inline]] std::span<const Span> line(int axis, int iu, int iv) const {
     if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
     const Lines& l = lines_[axis];
     if (iu < l.ulo || iu > l.uhi || iv < l.vlo || iv > l.vhi) return {};

@@ -1,7 +1,9 @@
 #include "sim/mdh/line_segments.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace mdhd::mdh {
 
@@ -49,6 +51,21 @@ void segmentsFromSamples(int first, std::span<const std::uint8_t> solid,
   }
 }
 
+namespace {
+
+// std::nextafter towards +inf / -inf of a grid level (an integer), without the
+// libm call: for a positive finite double the neighbours are one bit pattern away.
+double nextUp(int k) {
+  if (k <= 0) return std::nextafter(double(k), 1e300);
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(double(k)) + 1);
+}
+double nextDown(int k) {
+  if (k <= 0) return std::nextafter(double(k), -1e300);
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(double(k)) - 1);
+}
+
+}  // namespace
+
 bool strictlyInside(std::span<const Span> tool, double x) {
   for (const Span& t : tool) {
     if (t.lo >= x) return false;
@@ -75,8 +92,8 @@ double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k
   else
     pieces.clear();
   // The crossing lies in [k, k+1) when k is solid, in (k, k+1] when k+1 is.
-  const double lo = n0 ? double(k) : std::nextafter(double(k), double(k + 1));
-  const double hi = n0 ? std::nextafter(double(k + 1), double(k)) : double(k + 1);
+  const double lo = n0 ? double(k) : nextUp(k);
+  const double hi = n0 ? nextDown(k + 1) : double(k + 1);
   for (const Span& s : pieces) {
     if (n0 && !n1 && s.lo <= k) return std::clamp(s.hi, lo, hi);
     if (!n0 && n1 && s.hi >= k + 1) return std::clamp(s.lo, lo, hi);
