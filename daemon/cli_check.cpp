@@ -178,7 +178,7 @@ int runCheck(const Args& args, std::ostream& out, std::ostream& err) {
     std::string meshError;
     if (!a.mesh.empty()) {
       controls.finished = [&](const mdh::Stock& stock) {
-        meshError = writeStockStl(stock, a.mesh);
+        meshError = writeStockStl(stock, a.mesh, controls.threads);
       };
     }
     report = runCheckJob(loaded, controls);

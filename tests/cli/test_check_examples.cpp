@@ -135,12 +135,26 @@ TEST(CheckExamples, DonutGrooveOverhangsClean) {
 // The stock is cut on several threads with bit-identical results: the report is
 // the same, byte for byte, whatever the thread count (timing aside).
 TEST(CheckExamples, ThreadCountChangesNothingButTime) {
-  json one = check(example("side-drill-ac.json"), {"--threads", "1"}).report;
-  json three = check(example("side-drill-ac.json"), {"--threads", "3"}).report;
+  // The report and the mesh (cut and meshed on 1 and on 3 threads) are the same bytes.
+  const fs::path dir = fs::path(::testing::TempDir()) / "mdhd_threads";
+  fs::create_directories(dir);
+  const std::string stl1 = (dir / "one.stl").string(), stl3 = (dir / "three.stl").string();
+  json one = check(example("side-drill-ac.json"), {"--threads", "1", "--mesh", stl1}).report;
+  json three = check(example("side-drill-ac.json"), {"--threads", "3", "--mesh", stl3}).report;
   one.erase("timing");
   three.erase("timing");
   EXPECT_EQ(one.dump(), three.dump());
   EXPECT_GT(one["mdh"]["cells"].get<std::int64_t>(), 1);
+  const auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream all;
+    all << in.rdbuf();
+    return all.str();
+  };
+  const std::string a = bytes(stl1), b = bytes(stl3);
+  EXPECT_GT(a.size(), 84u + 50u * 1000u);  // header, count and a thousand triangles at least
+  EXPECT_TRUE(a == b) << a.size() << " vs " << b.size() << " bytes";
+  fs::remove_all(dir);
 }
 
 }  // namespace
