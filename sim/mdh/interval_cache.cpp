@@ -103,13 +103,34 @@ IntervalCache::~IntervalCache() = default;
 
 void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const {
   thread_local std::vector<geom::Interval> buf;
-  thread_local std::vector<Span> spans;
   buf.clear();
-  spans.clear();
   const int u = axisU(axis), v = axisV(axis);
   solid_.lineIntervals(axis, grid_.toMm(u, iu), grid_.toMm(v, iv), buf);
+  const auto toSpan = [&](const geom::Interval& i) {
+    return Span{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
+  };
+  if (buf.size() <= std::size(slot.inline_)) {
+    // The usual answer (a convex tool: one interval, or none) goes straight into
+    // the slot: the same sort, merge and drops as below, without the vectors.
+    std::uint32_t n = 0;
+    for (const geom::Interval& i : buf) {
+      const Span s = toSpan(i);
+      if (s.hi > s.lo) slot.inline_[n++] = s;  // drops NaN and inverted intervals
+    }
+    if (n == 2) {
+      Span& a = slot.inline_[0];
+      Span& b = slot.inline_[1];
+      if (b.lo < a.lo) std::swap(a, b);
+      if (b.lo <= a.hi) a.hi = std::max(a.hi, b.hi), n = 1;
+    }
+    slot.count = n;
+    slot.data = slot.inline_;
+    return;
+  }
+  thread_local std::vector<Span> spans;
+  spans.clear();
   for (const geom::Interval& i : buf) {
-    const Span s{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
+    const Span s = toSpan(i);
     if (s.hi > s.lo) spans.push_back(s);  // drops NaN and inverted intervals
   }
   // The contract says sorted and disjoint; make sure, the arithmetic relies on it.

@@ -98,6 +98,43 @@ class CombSolid : public geom::LineSolid {
   }
 };
 
+// Two intervals (what fits a slot inline), in whichever order and overlap the
+// line's position asks for: x picks the case.
+class PairSolid : public geom::LineSolid {
+ public:
+  geom::Aabb bounds() const override { return {{0, 0, 0}, {1, 1, 1}}; }
+  void lineIntervals(int, double y, double, std::vector<geom::Interval>& out) const override {
+    const int c = static_cast<int>(std::lround(y * 10));
+    if (c == 1) out.insert(out.end(), {{0.6, 0.8}, {0.1, 0.2}});           // unsorted
+    if (c == 2) out.insert(out.end(), {{0.3, 0.5}, {0.1, 0.4}});           // unsorted, overlapping
+    if (c == 3) out.insert(out.end(), {{0.1, 0.3}, {0.3, 0.6}});           // touching
+    if (c == 4) out.insert(out.end(), {{0.5, 0.2}, {std::nan(""), 0.9}});  // both dropped
+    if (c == 5) out.insert(out.end(), {{0.7, 0.9}, {0.5, 0.5}});           // empty one dropped
+  }
+};
+
+TEST(IntervalCache, TwoIntervalsAreSortedMergedAndCleanedInTheSlot) {
+  const GridSpec g = grid();
+  PairSolid pair;
+  IntervalCache cache(g, pair, nullptr, 1u << 0);
+  const auto spans = [&](int iy) {
+    const auto l = cache.line(0, iy, 4);
+    return std::vector<Span>(l.begin(), l.end());
+  };
+  const auto near = [](const std::vector<Span>& got, std::vector<Span> want) {
+    if (got.size() != want.size()) return false;
+    for (std::size_t i = 0; i < got.size(); ++i)
+      if (std::abs(got[i].lo - want[i].lo) > 1e-9 || std::abs(got[i].hi - want[i].hi) > 1e-9)
+        return false;
+    return true;
+  };
+  EXPECT_TRUE(near(spans(1), {{1, 2}, {6, 8}}));
+  EXPECT_TRUE(near(spans(2), {{1, 5}}));
+  EXPECT_TRUE(near(spans(3), {{1, 6}}));
+  EXPECT_TRUE(spans(4).empty());
+  EXPECT_TRUE(near(spans(5), {{7, 9}}));
+}
+
 TEST(IntervalCache, ManyIntervalsAreSortedMergedAndKept) {
   const GridSpec g = grid();
   CombSolid comb;
