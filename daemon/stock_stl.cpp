@@ -3,7 +3,6 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <fstream>
 
 #include "protocol/stl.h"
@@ -22,7 +21,7 @@ void syncPath(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path, int threads) {
+std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path) {
   std::filesystem::path partial = path;
   partial += ".partial";
   try {
@@ -30,9 +29,7 @@ std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& 
       std::ofstream file(partial, std::ios::binary | std::ios::trunc);
       if (!file) return "cannot write " + partial.string();
       protocol::StlWriter stl(file, "mdhd check: final stock (mm, workpiece frame)");
-      mesh::MeshOptions options;
-      options.threads = std::max(1, threads);
-      mesh::meshStock(stock, stl, options);
+      mesh::meshStock(stock, stl);
       stl.finish();
     }
     syncPath(partial);

@@ -10,8 +10,6 @@
 namespace mdhd::cli {
 
 // "" on success, else what went wrong (nothing is left under `path` then).
-// `threads` mesh runs of leaves in parallel; the bytes are the same for any count.
-std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path,
-                          int threads = 1);
+std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path);
 
 }  // namespace mdhd::cli

@@ -7,7 +7,7 @@
 //
 //   bench_check [--densities 5,10,20] [--no-freecad] [--smoke] [--threads N] [--only 3|5]
 //               [--passes K]
-// --threads: cutting and meshing threads (default 1); --only: just the 3-axis or the 5-axis dome;
+// --threads: stock cutting threads (default 1); --only: just the 3-axis or the 5-axis dome;
 // --passes: only the first K zigzag passes (a slice for profiling; no FreeCAD run).
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -106,9 +106,7 @@ nlohmann::json simulate(const Case& c, double density, int threads) {
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   ErrorSink errors(c.cx, c.cy);
   const Clock::time_point t1 = Clock::now();
-  mesh::MeshOptions meshOptions;
-  meshOptions.threads = options.threads;
-  mesh::meshStock(sim.stock(), errors, meshOptions);
+  mesh::meshStock(sim.stock(), errors);  // one thread, as mdhd check meshes
   const double meshWall = std::chrono::duration<double>(Clock::now() - t1).count();
   std::string first;
   if (!r.collisions.empty()) {
