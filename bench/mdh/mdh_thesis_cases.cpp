@@ -4,7 +4,9 @@
 // metrics of table 6.6 beside the thesis's, and CPU time. RS is seeded: each
 // ruleset runs with seeds 1..N and prints min and (upper) median.
 //   mdh_thesis_cases [--density 100] [--seeds 3] [--rulesets few|table66|all]
-//                    [--cases CS,D1,...] [--cuts-per-motion 1] [--smoke]
+//                    [--ruleset FEFS-FFS,CTD,SPT,RS]... [--cases CS,D1,...]
+//                    [--cuts-per-motion 1] [--smoke]
+// --ruleset R (repeatable) runs the named rulesets instead of --rulesets.
 // --cuts-per-motion k: each motion cut as k swept pieces (10 = the thesis's
 // in-between steps as separate cuts; 1 = one swept volume per motion).
 // --smoke: density 25, one seed, three rulesets; exits 1 if a result is wrong.
@@ -88,13 +90,16 @@ Run run(const Prepared& p, const std::vector<Rule>& rules, double density, std::
   return r;
 }
 
-std::vector<Rule> parseRules(std::string_view s) {
+std::optional<std::vector<Rule>> parseRules(std::string_view s) {
   std::vector<Rule> out;
   while (!s.empty()) {
     const auto comma = s.find(',');
-    out.push_back(*ruleFromName(s.substr(0, comma)));
+    const auto rule = ruleFromName(s.substr(0, comma));
+    if (!rule) return std::nullopt;
+    out.push_back(*rule);
     s = comma == std::string_view::npos ? std::string_view{} : s.substr(comma + 1);
   }
+  if (out.empty()) return std::nullopt;
   return out;
 }
 
@@ -117,6 +122,7 @@ int main(int argc, char** argv) {
   double density = 100;
   int seeds = 3;
   std::string rulesetChoice = "few", caseFilter;
+  std::vector<std::string> named;
   bool smoke = false;
   int cutsPerMotion = 1;
   for (int i = 1; i < argc; ++i) {
@@ -128,6 +134,8 @@ int main(int argc, char** argv) {
       seeds = std::atoi(next), ++i;
     else if (a == "--rulesets")
       rulesetChoice = next, ++i;
+    else if (a == "--ruleset")
+      named.emplace_back(next), ++i;
     else if (a == "--cases")
       caseFilter = "," + std::string(next) + ",", ++i;
     else if (a == "--cuts-per-motion")
@@ -144,14 +152,21 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "mdh_thesis_cases: --density must be > 0 and --seeds >= 1\n");
     return 2;
   }
-  std::vector<std::string> rulesets;
-  if (rulesetChoice == "all")
-    for (const auto& r : bench::kTable62) rulesets.emplace_back(r.rules);
-  else if (rulesetChoice == "table66")
-    for (const auto& r : bench::kTable66) rulesets.emplace_back(r.rules);
-  else
-    rulesets = {"RS", "FFS,RS", "FEFS-FFS,CTD,SPT,RS"};
-  if (rulesetChoice == "few" && !smoke) rulesets.push_back("FEFS-FFS,SPT,CTD,RS");
+  for (const std::string& r : named)
+    if (!parseRules(r)) {
+      std::fprintf(stderr, "mdh_thesis_cases: unknown rule in --ruleset '%s'\n", r.c_str());
+      return 2;
+    }
+  std::vector<std::string> rulesets = named;
+  if (named.empty()) {
+    if (rulesetChoice == "all")
+      for (const auto& r : bench::kTable62) rulesets.emplace_back(r.rules);
+    else if (rulesetChoice == "table66")
+      for (const auto& r : bench::kTable66) rulesets.emplace_back(r.rules);
+    else
+      rulesets = {"RS", "FFS,RS", "FEFS-FFS,CTD,SPT,RS"};
+    if (rulesetChoice == "few" && !smoke) rulesets.push_back("FEFS-FFS,SPT,CTD,RS");
+  }
 
   std::vector<Prepared> cases;
   std::vector<int> thesisIndex;
@@ -185,7 +200,7 @@ int main(int argc, char** argv) {
     for (std::size_t c = 0; c < cases.size(); ++c) {
       Runs& runs = results[r][c];
       for (int s = 1; s <= seeds; ++s) {
-        runs.push_back(run(cases[c], parseRules(rulesets[r]), density, std::uint64_t(s)));
+        runs.push_back(run(cases[c], *parseRules(rulesets[r]), density, std::uint64_t(s)));
         const Run& x = runs.back();
         if (!(x.volume > 0 && x.volume < x.boxVolume) || !std::isfinite(x.volume)) {
           std::printf("FAIL %s %s: volume %g of %g\n", cases[c].c.name.c_str(), rulesets[r].c_str(),

@@ -14,6 +14,21 @@ std::size_t lineStart(const SampleGrid& g, int axis, int cu, int cv) {
   return g.index(p);
 }
 
+// Whether a vertex has a neighbour in the cell of the other state along some
+// axis: a surface crossing on one of its edges.
+bool nextToSurface(const SampleGrid& g, std::size_t i) {
+  const bool solid = g.solidAt(i);
+  const int n0 = g.size(0), n1 = g.size(1);
+  const int at[3] = {static_cast<int>(i % n0), static_cast<int>(i / n0 % n1),
+                     static_cast<int>(i / n0 / n1)};
+  for (int a = 0; a < 3; ++a) {
+    const std::size_t st = g.stride(a);
+    if (at[a] > 0 && g.solidAt(i - st) != solid) return true;
+    if (at[a] + 1 < g.size(a) && g.solidAt(i + st) != solid) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void markUnresolved(SampleGrid& g, Direction old) {
@@ -35,8 +50,11 @@ void markUnresolved(SampleGrid& g, Direction old) {
       if (old.sign > 0 && g.solidAt(i0 + changes[last] * st)) --last;
       if (old.sign < 0 && g.solidAt(i0 + (changes[0] + 1) * st)) ++first;
       if (first > last) continue;
+      // Only the vertices next to the surface: the solid or empty run between
+      // the crossings is not surface, and rays through it alone must not
+      // count as unresolved (their regions would swallow the conflicts).
       for (int k = changes[first]; k <= changes[last] + 1; ++k)
-        g.state(i0 + k * st) |= SampleGrid::kUnresolved;
+        if (nextToSurface(g, i0 + k * st)) g.state(i0 + k * st) |= SampleGrid::kUnresolved;
     }
   }
 }
@@ -61,12 +79,14 @@ GoodBadMap buildGoodBadMap(const SampleGrid& g, int axis) {
       int changes = 0;
       bool firstDown = false;  // first change solid -> empty (a +axis surface)
       bool unresolved = false;
-      for (int k = 0; k < n; ++k) {
-        unresolved |= (g.state(i0 + k * st) & SampleGrid::kUnresolved) != 0;
-        if (k + 1 < n && g.solidAt(i0 + k * st) != g.solidAt(i0 + (k + 1) * st)) {
-          if (changes == 0) firstDown = g.solidAt(i0 + k * st);
-          ++changes;
-        }
+      for (int k = 0; k + 1 < n; ++k) {
+        const std::uint8_t s0 = g.state(i0 + k * st), s1 = g.state(i0 + (k + 1) * st);
+        if ((s0 & SampleGrid::kSolid) == (s1 & SampleGrid::kSolid)) continue;
+        if (changes == 0) firstDown = s0 & SampleGrid::kSolid;
+        ++changes;
+        // The ray meets the unresolved surface (thesis 3.2) where one of its
+        // own crossings lies next to it.
+        unresolved |= ((s0 | s1) & SampleGrid::kUnresolved) != 0;
       }
       Pixel t = Pixel::kUnsigned;
       if (changes >= 2)

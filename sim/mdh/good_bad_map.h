@@ -29,7 +29,9 @@ struct GoodBadMap {
 
 // Marks the vertices next to the part of the new surface the old direction
 // cannot hold (thesis 3.2: the unresolved surface), on every column that has
-// become invalid for `old`.
+// become invalid for `old`: between the first and last crossing it cannot
+// hold, those with a crossing on one of their edges. A pixel is unresolved
+// when one of its ray's own crossings has a marked end.
 void markUnresolved(SampleGrid& g, Direction old);
 
 GoodBadMap buildGoodBadMap(const SampleGrid& g, int axis);
