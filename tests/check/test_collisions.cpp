@@ -1,6 +1,7 @@
 // Each collision type of the spec (section 5) on 3-axis and 5-axis machines: the
 // episode, its first line, the place of first contact and the depth.
 #include <cmath>
+#include <numbers>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -16,7 +17,7 @@ using rig::ofType;
 using rig::Rig;
 using rig::run;
 
-constexpr double kPi = 3.14159265358979323846;
+using std::numbers::pi;
 constexpr const char* kStart = "G21 G90 G17\nT1 M6\nG43 H1\n";  // lines 1-3
 
 TEST(Collisions, RapidIntoStockRemovesAndIsOneEpisode) {
@@ -40,7 +41,7 @@ TEST(Collisions, RapidIntoStockRemovesAndIsOneEpisode) {
   EXPECT_NEAR(c.joints[gcode::kZ], c.position.z + 40.0, 1e-6);  // G43: Z joint = tip + length
   EXPECT_NEAR(c.depth, 2.0, 0.2);
   // The removal happened: a 6 mm hole 2 mm deep, then a 4 mm long slot of it.
-  const double removed = 2 * (kPi * 9 + 4 * 6);
+  const double removed = 2 * (pi * 9 + 4 * 6);
   EXPECT_NEAR(r.stats.removed_volume_mm3, removed, 0.03 * removed);
   EXPECT_EQ(r.status, Status::kCollisions);
 }
@@ -137,7 +138,7 @@ TEST(Collisions, CutterIntoAFixtureBelowTheStock) {
   // First contact: where the penetration first exceeds the contact tolerance (0.1 mm).
   EXPECT_NEAR(f[0]->position.z, -20.1, 0.02);
   // The fixture is not machinable: only the stock lost material.
-  EXPECT_NEAR(r.stats.removed_volume_mm3, kPi * 9 * 20, 0.02 * kPi * 9 * 20);
+  EXPECT_NEAR(r.stats.removed_volume_mm3, pi * 9 * 20, 0.02 * pi * 9 * 20);
 }
 
 TEST(Collisions, RapidThroughAClampCylinder) {
@@ -208,7 +209,7 @@ TEST(Collisions, TableTurnsThePartIntoAToolWithTheSpindleOff) {
   EXPECT_GT(r.stats.removed_volume_mm3, 0.0);
   // The tip's path in W: from home (tip at z 260) to the start, then the 60 degree arc
   // within the chordal tolerance.
-  EXPECT_NEAR(r.stats.path_length, std::hypot(16.0, 255.0) + 16.0 * kPi / 3, 0.01);
+  EXPECT_NEAR(r.stats.path_length, std::hypot(16.0, 255.0) + 16.0 * pi / 3, 0.01);
 }
 
 TEST(Collisions, TiltedRapidIntoTheSideFace) {

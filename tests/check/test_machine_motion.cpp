@@ -2,6 +2,7 @@
 // known duration (machineMotion), a fork that runs ahead on a copy of the stock,
 // a snapshot report while the run goes on, and where on its motion an episode began.
 #include <cmath>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -13,7 +14,7 @@ namespace {
 
 using rig::flatTool;
 
-constexpr double kPi = 3.14159265358979323846;
+using std::numbers::pi;
 
 // Collects a program's motions.
 class Recorder : public gcode::MotionSink {
@@ -111,7 +112,7 @@ TEST(MachineMotion, PolledArcMatchesTheArcWithinTheChordError) {
   // Chords of 10 * pi / 100 mm on a 10 mm radius: a sagitta of 1.2 um.
   EXPECT_NEAR(b.stats.removed_volume_mm3, a.stats.removed_volume_mm3,
               1e-3 * a.stats.removed_volume_mm3);
-  EXPECT_GT(a.stats.removed_volume_mm3, 3 * (20 * 6 + kPi * 10 * 6));
+  EXPECT_GT(a.stats.removed_volume_mm3, 3 * (20 * 6 + pi * 10 * 6));
   EXPECT_NEAR(b.stats.cycle_time_s, seconds, 1e-9);  // the machine's time, not the program's
 }
 
@@ -173,7 +174,7 @@ TEST(MachineMotion, ForkRunsAheadOnACopyAndSnapshotMatchesFinish) {
   ASSERT_EQ(ahead->collisions().size(), 1u);
   EXPECT_EQ(ahead->collisions()[0].type, CollisionType::kRapidIntoStock);
   EXPECT_EQ(ahead->collisions()[0].line, 42);
-  EXPECT_NEAR(ahead->stock().volume(), volume - kPi * 9 * 2, 0.03 * kPi * 9 * 2);
+  EXPECT_NEAR(ahead->stock().volume(), volume - pi * 9 * 2, 0.03 * pi * 9 * 2);
   EXPECT_DOUBLE_EQ(live->stock().volume(), volume);
   EXPECT_TRUE(live->collisions().empty());
 

@@ -13,6 +13,7 @@
 #include "daemon/check_runner.h"
 #include "daemon/cli.h"
 #include "protocol/json_schema.h"
+#include "tests/cli/example_path.h"
 
 namespace mdhd::cli {
 namespace {
@@ -20,9 +21,7 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-std::string example(const char* name) {
-  return std::string(MDHD_SHARED_DIR) + "/examples/" + name;
-}
+using test_support::example;
 
 // A scratch folder with a small 3-axis job (20 x 20 x 10 stock, density 4).
 class CheckScratch : public ::testing::Test {

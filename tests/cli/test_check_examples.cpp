@@ -14,6 +14,7 @@
 
 #include "daemon/cli.h"
 #include "protocol/json_schema.h"
+#include "tests/cli/example_path.h"
 
 namespace mdhd::cli {
 namespace {
@@ -29,9 +30,7 @@ struct CheckRun {
   std::string err;
 };
 
-std::string example(const char* name) {
-  return std::string(MDHD_SHARED_DIR) + "/examples/" + name;
-}
+using test_support::example;
 
 CheckRun check(const std::string& job, const std::vector<std::string>& extra = {}) {
   std::ostringstream out, err;

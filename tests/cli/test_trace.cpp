@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "daemon/cli.h"
+#include "tests/cli/example_path.h"
 
 namespace mdhd::cli {
 namespace {
@@ -33,9 +34,7 @@ TraceRun trace(const std::string& job_path) {
   return r;
 }
 
-std::string example(const char* name) {
-  return std::string(MDHD_SHARED_DIR) + "/examples/" + name;
-}
+using test_support::example;
 
 const json* motionAtLine(const TraceRun& r, int line) {
   for (const json& m : r.motions) {

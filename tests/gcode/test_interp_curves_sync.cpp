@@ -12,12 +12,12 @@ namespace {
 
 using Result = ProgramRun;
 
-Result run(const std::string& program, InterpreterConfig config = {}) {
+Result runPlain(const std::string& program, InterpreterConfig config = {}) {
   return runProgram(program, std::move(config));
 }
 
 std::string errorOf(const std::string& program) {
-  const Result r = run(program);
+  const Result r = runPlain(program);
   return r.error ? r.error->what() : std::string("(no error)");
 }
 
@@ -39,7 +39,7 @@ double polylineDistance(const std::vector<RecordedMotion>& ms, double qx, double
 // G5.1 from (0,0), I10 J0, to (10,10): the quadratic Bezier with control
 // points (0,0) (10,0) (10,10): B(t) = (20t - 10t^2, 10t^2).
 TEST(Splines, QuadraticFollowsTheCurveWithinTolerance) {
-  const Result r = run("G21 G17 G90 F600\nG0 X0 Y0 Z1\nG5.1 X10 Y10 I10 J0\nG1 X20\n");
+  const Result r = runPlain("G21 G17 G90 F600\nG0 X0 Y0 Z1\nG5.1 X10 Y10 I10 J0\nG1 X20\n");
   ASSERT_FALSE(r.error) << r.error->what();
   std::vector<RecordedMotion> curve;
   for (const RecordedMotion& m : r.motions)
@@ -74,7 +74,7 @@ TEST(Splines, ToleranceSetsTheNumberOfMoves) {
   auto movesFor = [](double tol) {
     InterpreterConfig c;
     c.spline_tolerance = tol;
-    return run("F100\nG5.1 X10 Y10 I10 J0\n", c).motions.size();
+    return runPlain("F100\nG5.1 X10 Y10 I10 J0\n", c).motions.size();
   };
   EXPECT_GT(movesFor(0.0001), 2 * movesFor(0.01));
   InterpreterConfig bad;
@@ -89,7 +89,7 @@ TEST(Splines, CubicChainsContinueTheEndDirection) {
   // First cubic: (0,0) -> (10,0), leaving along +Y (I0 J5), arriving from +Y
   // (P0 Q5: last control point 5 above the end). The second, without I J,
   // leaves (10,0) along -P -Q = (0,-5): straight down.
-  const Result r = run("F100\nG5 X10 Y0 I0 J5 P0 Q5\nG5 X20 Y0 P0 Q-5\n");
+  const Result r = runPlain("F100\nG5 X10 Y0 I0 J5 P0 Q5\nG5 X20 Y0 P0 Q-5\n");
   ASSERT_FALSE(r.error) << r.error->what();
   std::vector<RecordedMotion> a, b;
   for (const RecordedMotion& m : r.motions) (m.line == 2 ? a : b).push_back(m);
@@ -135,7 +135,7 @@ TEST(Splines, ErrorsInLinuxCncWords) {
 // (0,10) w1. Every vertex must lie on the circle of radius 10.
 TEST(Splines, NurbsQuarterCircleIsExact) {
   const Result r =
-      run("F100\nG0 X10 Y0\nG5.2 X10 Y10 P0.70710678118654752 L3\nX0 Y10 P1\nG5.3\nG1 X-5\n");
+      runPlain("F100\nG0 X10 Y0\nG5.2 X10 Y10 P0.70710678118654752 L3\nX0 Y10 P1\nG5.3\nG1 X-5\n");
   ASSERT_FALSE(r.error) << r.error->what();
   std::vector<RecordedMotion> arc;
   for (const RecordedMotion& m : r.motions)
@@ -157,7 +157,7 @@ TEST(Splines, NurbsQuarterCircleIsExact) {
 }
 
 TEST(Splines, NurbsOfHigherOrderEndsAtItsLastPoint) {
-  const Result r = run("F100\nG5.2 X0 Y10 P1 L4\nX10 Y10 P2\nX10 Y0 P1\nX20 Y0 P1\nG5.3\n");
+  const Result r = runPlain("F100\nG5.2 X0 Y10 P1 L4\nX10 Y10 P2\nX10 Y0 P1\nX20 Y0 P1\nG5.3\n");
   ASSERT_FALSE(r.error) << r.error->what();
   ASSERT_FALSE(r.motions.empty());
   EXPECT_EQ(r.motions.back().end[kX], 20.0);
@@ -203,7 +203,7 @@ TEST(SplineMath, ClampedCurveInterpolatesItsEnds) {
 // ---------------------------------------------------------------- G33 / G33.1
 
 TEST(SpindleSync, RigidTapGoesInAndComesBackOut) {
-  const Result r = run("G20\nS200 M3\nG0 X1 Y2 Z0.25\nG33.1 Z-0.95 K0.05\n");
+  const Result r = runPlain("G20\nS200 M3\nG0 X1 Y2 Z0.25\nG33.1 Z-0.95 K0.05\n");
   ASSERT_FALSE(r.error) << r.error->what();
   ASSERT_EQ(r.motions.size(), 3u);
   const RecordedMotion& in = r.motions[1];
@@ -219,7 +219,7 @@ TEST(SpindleSync, RigidTapGoesInAndComesBackOut) {
 }
 
 TEST(SpindleSync, G33IsOneSynchronisedMove) {
-  const Result r = run("S100 M4\nG33 Z-10 K1.5\n");
+  const Result r = runPlain("S100 M4\nG33 Z-10 K1.5\n");
   ASSERT_FALSE(r.error) << r.error->what();
   ASSERT_EQ(r.motions.size(), 1u);
   EXPECT_TRUE(r.motions[0].sync);
@@ -244,7 +244,7 @@ TEST(Probe, ModelDecidesWhereTheMoveEnds) {
     stop[kZ] = (start[kZ] + target[kZ]) / 2;  // trips half way down
     return true;
   };
-  const Result r = run("G0 Z10\nG38.2 Z-10 F100\nG91 G0 Z1\n", c);
+  const Result r = runPlain("G0 Z10\nG38.2 Z-10 F100\nG91 G0 Z1\n", c);
   ASSERT_FALSE(r.error) << r.error->what();
   ASSERT_EQ(r.motions.size(), 3u);
   EXPECT_DOUBLE_EQ(r.motions[1].end[kZ], 0.0);
@@ -252,7 +252,7 @@ TEST(Probe, ModelDecidesWhereTheMoveEnds) {
   EXPECT_DOUBLE_EQ(r.param(5063), 0.0);  // #5063
   EXPECT_DOUBLE_EQ(r.param(5070), 1.0);  // #5070: tripped
   // Without a model the move runs to the target and #5070 says it did not trip.
-  const Result none = run("G0 Z10\nG38.3 Z-10 F100\n");
+  const Result none = runPlain("G0 Z10\nG38.3 Z-10 F100\n");
   EXPECT_DOUBLE_EQ(none.motions[1].end[kZ], -10.0);
   EXPECT_DOUBLE_EQ(none.param(5063), -10.0);
   EXPECT_DOUBLE_EQ(none.param(5070), 0.0);
@@ -283,10 +283,10 @@ TEST(WordChecks, UnusedWordsInLinuxCncWords) {
 
 // LinuxCNC starts in R_PLANE (G99): a cycle without G98/G99 retracts to R.
 TEST(Modes, CyclesRetractToRUnlessG98) {
-  Result r = run("F100\nG0 Z10\nG81 X0 Y0 Z-1 R2\n");
+  Result r = runPlain("F100\nG0 Z10\nG81 X0 Y0 Z-1 R2\n");
   ASSERT_FALSE(r.error) << r.error->what();
   EXPECT_DOUBLE_EQ(r.motions.back().end[kZ], 2.0);
-  r = run("F100\nG0 Z10\nG98 G81 X0 Y0 Z-1 R2\n");
+  r = runPlain("F100\nG0 Z10\nG98 G81 X0 Y0 Z-1 R2\n");
   EXPECT_DOUBLE_EQ(r.motions.back().end[kZ], 10.0);
 }
 

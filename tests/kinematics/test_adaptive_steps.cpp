@@ -7,6 +7,7 @@
 
 #include "sim/kinematics/presets.h"
 #include "tests/kinematics/expect_vec.h"
+#include "tests/kinematics/joint_moves.h"
 
 namespace mdhd::kin {
 namespace {
@@ -15,13 +16,7 @@ JointValues joints(double x, double y, double z, double a = 0, double b = 0, dou
   return {x, y, z, a, b, c, 0, 0, 0};
 }
 
-gcode::Motion move(JointValues a, JointValues b) {
-  gcode::Motion m;
-  m.type = gcode::MotionType::kFeed;
-  m.start = a;
-  m.end = b;
-  return m;
-}
+using test_support::move;
 
 double pointToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
   const glm::dvec3 d = b - a;

@@ -53,7 +53,7 @@ const gcode::Motion& onLine(const std::vector<gcode::Motion>& motions, int line)
 }
 
 // examples/machine-bc-head-table.json
-Machine donutMachine() {
+Machine donutExampleMachine() {
   Machine m = presets::bcHeadTable();
   m.joints[3].origin = {0, 0, 0};
   m.joints[4].origin = {2, 2, 0};
@@ -62,7 +62,7 @@ Machine donutMachine() {
 }
 
 TEST(ExamplePrograms, DonutTipCirclesTheCAxis) {
-  const Kinematics kin(donutMachine());
+  const Kinematics kin(donutExampleMachine());
   const auto motions = run(kin.machine(), "donut-bc.ngc", 1, 20);
   // Line 11: the plunge ends at the README's pose.
   const JointPath plunge(kin, onLine(motions, 11), 20);

@@ -6,11 +6,12 @@
 
 #include "sim/kinematics/presets.h"
 #include "tests/kinematics/expect_vec.h"
+#include "tests/kinematics/joint_moves.h"
 
 namespace mdhd::kin {
 namespace {
 
-constexpr double kTol = 1e-9;
+constexpr double kJointTol = 1e-9;
 const double kH = std::sqrt(0.5);
 
 gcode::Motion line(JointValues a, JointValues b) {
@@ -31,9 +32,7 @@ gcode::Motion arc(gcode::Plane plane, JointValues a, JointValues b, double c0, d
   return m;
 }
 
-JointValues xyz(double x, double y, double z) {
-  return {x, y, z, 0, 0, 0, 0, 0, 0};
-}
+using test_support::xyz;
 
 glm::dvec3 pos(const JointValues& q) {
   return {q[0], q[1], q[2]};
@@ -46,7 +45,7 @@ TEST(JointPath, LineIsLinearInJointSpace) {
   b[gcode::kC] = -90;
   const JointPath p(kin, line({}, b), 50);
   const JointValues q = p.at(0.25);
-  EXPECT_VEC_NEAR(pos(q), glm::dvec3(2.5, 5, -1.25), kTol);
+  EXPECT_VEC_NEAR(pos(q), glm::dvec3(2.5, 5, -1.25), kJointTol);
   EXPECT_DOUBLE_EQ(q[gcode::kA], 7.5);
   EXPECT_DOUBLE_EQ(q[gcode::kC], -22.5);
   EXPECT_EQ(p.at(0), JointValues{});
@@ -61,7 +60,7 @@ TEST(JointPath, ArcXyCounterClockwiseQuarter) {
   // G17 G3 from (10, 0) to (0, 10) about the origin: a quarter turn through 45 degrees.
   const JointPath p(kin, arc(gcode::Plane::kXY, xyz(10, 0, 0), xyz(0, 10, 0), 0, 0, 1), 0);
   EXPECT_NEAR(p.arcSweep(), std::numbers::pi / 2, 1e-15);
-  EXPECT_VEC_NEAR(pos(p.at(0.5)), glm::dvec3(10 * kH, 10 * kH, 0), kTol);
+  EXPECT_VEC_NEAR(pos(p.at(0.5)), glm::dvec3(10 * kH, 10 * kH, 0), kJointTol);
 }
 
 TEST(JointPath, ArcXyClockwiseTakesTheLongWay) {
@@ -69,15 +68,15 @@ TEST(JointPath, ArcXyClockwiseTakesTheLongWay) {
   // G2 from (10, 0) to (0, 10): three quarters clockwise, through (0, -10) and (-10, 0).
   const JointPath p(kin, arc(gcode::Plane::kXY, xyz(10, 0, 0), xyz(0, 10, 0), 0, 0, -1), 0);
   EXPECT_NEAR(p.arcSweep(), -1.5 * std::numbers::pi, 1e-15);
-  EXPECT_VEC_NEAR(pos(p.at(1.0 / 3)), glm::dvec3(0, -10, 0), kTol);
-  EXPECT_VEC_NEAR(pos(p.at(2.0 / 3)), glm::dvec3(-10, 0, 0), kTol);
+  EXPECT_VEC_NEAR(pos(p.at(1.0 / 3)), glm::dvec3(0, -10, 0), kJointTol);
+  EXPECT_VEC_NEAR(pos(p.at(2.0 / 3)), glm::dvec3(-10, 0, 0), kJointTol);
 }
 
 TEST(JointPath, ArcXzRotatesAboutPlusY) {
   const Kinematics kin(presets::threeAxisMill());
   // G18 G3: ccw about +Y takes +X to -Z (R_y(90) (10, 0, 0) = (0, 0, -10)). Centre is (Z, X).
   const JointPath p(kin, arc(gcode::Plane::kXZ, xyz(10, 5, 0), xyz(0, 5, -10), 0, 0, 1), 0);
-  EXPECT_VEC_NEAR(pos(p.at(0.5)), glm::dvec3(10 * kH, 5, -10 * kH), kTol);
+  EXPECT_VEC_NEAR(pos(p.at(0.5)), glm::dvec3(10 * kH, 5, -10 * kH), kJointTol);
   EXPECT_EQ(p.arcFirst(), gcode::kZ);
   EXPECT_EQ(p.arcSecond(), gcode::kX);
 }
@@ -86,7 +85,7 @@ TEST(JointPath, ArcYzRotatesAboutPlusX) {
   const Kinematics kin(presets::threeAxisMill());
   // G19 G3: ccw about +X takes +Y to +Z. Centre (Y, Z) = (0, 0), X is the helix axis here.
   const JointPath p(kin, arc(gcode::Plane::kYZ, xyz(0, 10, 0), xyz(4, 0, 10), 0, 0, 1), 0);
-  EXPECT_VEC_NEAR(pos(p.at(0.5)), glm::dvec3(2, 10 * kH, 10 * kH), kTol);
+  EXPECT_VEC_NEAR(pos(p.at(0.5)), glm::dvec3(2, 10 * kH, 10 * kH), kJointTol);
 }
 
 TEST(JointPath, HelixFullTurnsAndOtherJointsLinear) {
@@ -99,21 +98,21 @@ TEST(JointPath, HelixFullTurnsAndOtherJointsLinear) {
   EXPECT_NEAR(p.arcSweep(), 4 * std::numbers::pi, 1e-12);
   // s = 1/4: one half turn done: (10, 20), Z -1, C 22.5.
   JointValues q = p.at(0.25);
-  EXPECT_VEC_NEAR(pos(q), glm::dvec3(10, 20, -1), kTol);
+  EXPECT_VEC_NEAR(pos(q), glm::dvec3(10, 20, -1), kJointTol);
   EXPECT_DOUBLE_EQ(q[gcode::kC], 22.5);
   q = p.at(0.5);
-  EXPECT_VEC_NEAR(pos(q), glm::dvec3(30, 20, -2), kTol);
+  EXPECT_VEC_NEAR(pos(q), glm::dvec3(30, 20, -2), kJointTol);
   // Clockwise full circle.
   const JointPath cw(kin, arc(gcode::Plane::kXY, a, a, 20, 20, -1), 0);
   EXPECT_NEAR(cw.arcSweep(), -2 * std::numbers::pi, 1e-12);
-  EXPECT_VEC_NEAR(pos(cw.at(0.25)), glm::dvec3(20, 10, 0), kTol);
+  EXPECT_VEC_NEAR(pos(cw.at(0.25)), glm::dvec3(20, 10, 0), kJointTol);
 }
 
 TEST(JointPath, ArcRadiusBlendsWhenEndsDiffer) {
   const Kinematics kin(presets::threeAxisMill());
   // The interpreter allows a small radius mismatch; the path spirals from 10 to 10.002.
   const JointPath p(kin, arc(gcode::Plane::kXY, xyz(10, 0, 0), xyz(0, 10.002, 0), 0, 0, 1), 0);
-  EXPECT_VEC_NEAR(pos(p.at(0.5)), glm::dvec3(10.001 * kH, 10.001 * kH, 0), kTol);
+  EXPECT_VEC_NEAR(pos(p.at(0.5)), glm::dvec3(10.001 * kH, 10.001 * kH, 0), kJointTol);
   EXPECT_EQ(pos(p.at(1)), glm::dvec3(0, 10.002, 0));
 }
 

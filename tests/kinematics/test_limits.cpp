@@ -8,21 +8,13 @@
 
 #include "sim/kinematics/presets.h"
 #include "tests/kinematics/expect_vec.h"
+#include "tests/kinematics/joint_moves.h"
 
 namespace mdhd::kin {
 namespace {
 
-JointValues xyz(double x, double y, double z) {
-  return {x, y, z, 0, 0, 0, 0, 0, 0};
-}
-
-gcode::Motion move(JointValues a, JointValues b) {
-  gcode::Motion m;
-  m.type = gcode::MotionType::kFeed;
-  m.start = a;
-  m.end = b;
-  return m;
-}
+using test_support::move;
+using test_support::xyz;
 
 // The example 3-axis machine: X -50..550, Y -50..450, Z -100..300.
 Machine exampleMill() {

@@ -81,7 +81,7 @@ TEST(ModbusMapJson, DefaultsAndRoundTrip) {
   EXPECT_FALSE(ex["tool"].contains("word_order"));  // 16-bit: no word order
 }
 
-std::string errorOf(const json& j, const kin::Machine* machine = nullptr) {
+std::string mapErrorOf(const json& j, const kin::Machine* machine = nullptr) {
   try {
     modbusMapFromJson(j, "modbus", machine);
   } catch (const FieldError& e) {
@@ -103,53 +103,55 @@ json without(const std::string& key) {
 }
 
 TEST(ModbusMapJson, ErrorsNameTheField) {
-  EXPECT_EQ(errorOf(with("/joints/X/word_order", "bacd")),
+  EXPECT_EQ(mapErrorOf(with("/joints/X/word_order", "bacd")),
             "modbus.joints.X.word_order: expected one of abcd, badc, cdab, dcba, got the string "
             "\"bacd\"");
-  EXPECT_EQ(errorOf(with("/joints/Y/type", "float64")),
+  EXPECT_EQ(mapErrorOf(with("/joints/Y/type", "float64")),
             "modbus.joints.Y.type: expected one of float32, int32, uint32, int16, uint16, got the "
             "string \"float64\"");
-  EXPECT_EQ(errorOf(with("/tool/word_order", "cdab")),
+  EXPECT_EQ(mapErrorOf(with("/tool/word_order", "cdab")),
             "modbus.tool.word_order: applies to 32-bit types only, not to uint16");
-  EXPECT_EQ(errorOf(with("/joints/Z/address", 3)),
+  EXPECT_EQ(mapErrorOf(with("/joints/Z/address", 3)),
             "modbus.joints.Z.address: registers 3..4 overlap joints.Y (registers 2..3)");
-  EXPECT_EQ(errorOf(with("/line/address", 65535)),
+  EXPECT_EQ(mapErrorOf(with("/line/address", 65535)),
             "modbus.line.address: registers 65535..65536 (a uint32) is outside 0..65535");
-  EXPECT_EQ(errorOf(with("/joints/X/adress", 0)),
+  EXPECT_EQ(mapErrorOf(with("/joints/X/adress", 0)),
             "modbus.joints.X.adress: unknown field (known: address, type, word_order, scale)");
-  EXPECT_EQ(errorOf(with("/joints/Q", json{{"address", 20}, {"type", "float32"}})),
+  EXPECT_EQ(mapErrorOf(with("/joints/Q", json{{"address", 20}, {"type", "float32"}})),
             "modbus.joints.Q: is not a joint name (X Y Z A B C U V W)");
-  EXPECT_EQ(errorOf(with("/poll_hz", 5000)),
+  EXPECT_EQ(mapErrorOf(with("/poll_hz", 5000)),
             "modbus.poll_hz: must be in 0.1..1000 (polls per second)");
-  EXPECT_EQ(errorOf(with("/poll_hz", "fast")),
+  EXPECT_EQ(mapErrorOf(with("/poll_hz", "fast")),
             "modbus.poll_hz: expected a number, got the string \"fast\"");
-  EXPECT_EQ(errorOf(with("/table", "coils")),
+  EXPECT_EQ(mapErrorOf(with("/table", "coils")),
             "modbus.table: expected \"holding\" or \"input\", got the string \"coils\"");
-  EXPECT_EQ(errorOf(with("/feed_hold/enabled", 1)),
+  EXPECT_EQ(mapErrorOf(with("/feed_hold/enabled", 1)),
             "modbus.feed_hold.enabled: expected true or false, got the number 1");
-  EXPECT_EQ(errorOf(with("/timeout_ms", 0.5)),
+  EXPECT_EQ(mapErrorOf(with("/timeout_ms", 0.5)),
             "modbus.timeout_ms: expected an integer, got the number 0.5");
-  EXPECT_EQ(errorOf(with("/joints/X/scale", 0)),
+  EXPECT_EQ(mapErrorOf(with("/joints/X/scale", 0)),
             "modbus.joints.X.scale: must be a finite number other than 0");
-  EXPECT_EQ(errorOf(without("host")), "modbus.host: missing");
-  EXPECT_EQ(errorOf(without("joints")), "modbus.joints: missing");
-  EXPECT_EQ(errorOf(with("/joints", json::object())), "modbus.joints: must map at least one joint");
-  EXPECT_EQ(errorOf(with("/joints/X", json{{"type", "float32"}})),
+  EXPECT_EQ(mapErrorOf(without("host")), "modbus.host: missing");
+  EXPECT_EQ(mapErrorOf(without("joints")), "modbus.joints: missing");
+  EXPECT_EQ(mapErrorOf(with("/joints", json::object())),
+            "modbus.joints: must map at least one joint");
+  EXPECT_EQ(mapErrorOf(with("/joints/X", json{{"type", "float32"}})),
             "modbus.joints.X.address: missing");
-  EXPECT_EQ(errorOf(with("/joints", json::array())),
+  EXPECT_EQ(mapErrorOf(with("/joints", json::array())),
             "modbus.joints: expected an object of joint name -> register, got an array of 0");
-  EXPECT_EQ(errorOf(json::array()), "modbus: expected an object, got an array of 0");
+  EXPECT_EQ(mapErrorOf(json::array()), "modbus: expected an object, got an array of 0");
 }
 
 TEST(ModbusMapJson, JointNamesMustBeTheMachines) {
   const kin::Machine bc = kin::presets::bcHeadTable();  // X Y Z B C
-  EXPECT_EQ(errorOf(example(), &bc), "modbus.joints.A: the machine has no joint A (it has XYZBC)");
+  EXPECT_EQ(mapErrorOf(example(), &bc),
+            "modbus.joints.A: the machine has no joint A (it has XYZBC)");
   json j = example();
   j["joints"]["B"] = j["joints"]["A"];
   j["joints"].erase("A");
-  EXPECT_EQ(errorOf(j, &bc), "(accepted)");
+  EXPECT_EQ(mapErrorOf(j, &bc), "(accepted)");
   j["joints"].erase("C");
-  EXPECT_EQ(errorOf(j, &bc),
+  EXPECT_EQ(mapErrorOf(j, &bc),
             "modbus.joints: the machine's joint C has no register (every joint must be read for "
             "a pose)");
 }

@@ -17,7 +17,7 @@ json ballTool() {
 }
 
 // The message of the FieldError that reading `j` as tools[1] throws.
-std::string errorOf(const json& j) {
+std::string toolErrorOf(const json& j) {
   try {
     toolFromJson(j, "tools[1]");
   } catch (const FieldError& e) {
@@ -163,7 +163,8 @@ TEST(ToolJson, EveryErrorNamesItsField) {
   for (const Case& c : cases) {
     json j = ballTool();
     c.edit(j);
-    EXPECT_EQ(errorOf(j).rfind(c.error, 0), 0u) << "got: " << errorOf(j) << "\nwant: " << c.error;
+    EXPECT_EQ(toolErrorOf(j).rfind(c.error, 0), 0u)
+        << "got: " << toolErrorOf(j) << "\nwant: " << c.error;
   }
 }
 

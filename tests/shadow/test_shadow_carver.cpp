@@ -2,6 +2,7 @@
 // by the engine; straight runs merged, standing still and resyncs cut nothing,
 // the kind of move taken from the program at the reported line.
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -30,7 +31,7 @@ std::vector<PollSample> rapidIntoStockSamples() {
           at(10, 10, 5, 210, 8)};
 }
 
-constexpr double kPi = 3.14159265358979323846;
+using std::numbers::pi;
 
 TEST(ShadowCarver, SamplesOnAStraightLineAreOneMotionAndCutTheSlot) {
   const protocol::Job job = cellJob();
@@ -45,7 +46,7 @@ TEST(ShadowCarver, SamplesOnAStraightLineAreOneMotionAndCutTheSlot) {
   EXPECT_TRUE(r.alarms.empty());
   EXPECT_TRUE(r.errors.empty());
   const double removed = full - carver.simulation().stock().volume();
-  const double expected = 2 * (kPi * 9 + 20 * 6);  // 2 mm deep: hole and slot
+  const double expected = 2 * (pi * 9 + 20 * 6);  // 2 mm deep: hole and slot
   EXPECT_NEAR(removed, expected, 0.03 * expected);
   // The cycle time is the machine's: 210 ms of polls.
   EXPECT_NEAR(carver.simulation().snapshot(0).stats.cycle_time_s, 0.21, 1e-9);
@@ -68,7 +69,7 @@ TEST(ShadowCarver, StandingStillAndResyncCutNothing) {
   // From there on it cuts again: up and out of the stock through uncut material.
   r = carver.carve(std::vector<PollSample>{at(30, 30, 5, 520)});
   EXPECT_EQ(r.motions, 1);
-  EXPECT_NEAR(full - carver.simulation().stock().volume(), kPi * 9 * 3, 0.03 * kPi * 27);
+  EXPECT_NEAR(full - carver.simulation().stock().volume(), pi * 9 * 3, 0.03 * pi * 27);
 }
 
 TEST(ShadowCarver, ACornerIsTwoMotionsAndSeparateBatchesAreNotMerged) {

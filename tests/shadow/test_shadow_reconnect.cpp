@@ -4,6 +4,7 @@
 // replies, short frames and NaN between good answers.
 #include <csignal>
 #include <cstring>
+#include <numbers>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,7 +21,7 @@ using modbus_test::Bytes;
 using modbus_test::RawPeer;
 using modbus_test::SimProcess;
 
-constexpr double kPi = 3.14159265358979323846;
+using std::numbers::pi;
 
 std::vector<std::string> stateSequence(ShadowSession& s) {
   std::vector<std::string> out;
@@ -166,7 +167,7 @@ TEST(ShadowReconnect, SurvivesGarbageExceptionsShortFramesAndNaN) {
   EXPECT_EQ(states[states.size() - 2], "live");
   // Every good pose was cut: a 1 mm deep slot from x = 5 on, the gaps bridged.
   const double length = x.load() - 5.0;
-  const double slot = length * 6 + kPi * 9;
+  const double slot = length * 6 + pi * 9;
   EXPECT_GT(length, 10.0);
   EXPECT_NEAR(full - session.stockVolume(), slot, 0.03 * slot);
   EXPECT_TRUE(session.alarms().empty());
