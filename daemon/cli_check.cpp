@@ -20,7 +20,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kUsage =
+constexpr const char* kCheckUsage =
     "usage: mdhd check JOB.json [--report REPORT.json] [--mesh RESULT.stl] [--threads N]\n";
 
 struct CheckArgs {
@@ -43,28 +43,28 @@ bool parseArgs(const Args& args, CheckArgs& out, std::ostream& err) {
     const std::string& a = args[i];
     if (a == "--report" || a == "--mesh") {
       if (i + 1 >= args.size() || args[i + 1].empty()) {
-        err << "mdhd check: " << a << " needs a file name\n" << kUsage;
+        err << "mdhd check: " << a << " needs a file name\n" << kCheckUsage;
         return false;
       }
       (a == "--report" ? out.report : out.mesh) = args[++i];
     } else if (a == "--threads") {
       if (i + 1 >= args.size() || !parseThreads(args[i + 1], out.threads)) {
-        err << "mdhd check: --threads needs a count from 0 (one per core) to 256\n" << kUsage;
+        err << "mdhd check: --threads needs a count from 0 (one per core) to 256\n" << kCheckUsage;
         return false;
       }
       ++i;
     } else if (!a.empty() && a[0] == '-') {
-      err << "mdhd check: unknown option '" << a << "'\n" << kUsage;
+      err << "mdhd check: unknown option '" << a << "'\n" << kCheckUsage;
       return false;
     } else if (out.job.empty()) {
       out.job = a;
     } else {
-      err << "mdhd check: one job at a time ('" << a << "' is extra)\n" << kUsage;
+      err << "mdhd check: one job at a time ('" << a << "' is extra)\n" << kCheckUsage;
       return false;
     }
   }
   if (out.job.empty()) {
-    err << kUsage;
+    err << kCheckUsage;
     return false;
   }
   return true;

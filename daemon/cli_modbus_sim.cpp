@@ -24,7 +24,7 @@ namespace {
 
 using protocol::FieldError;
 
-constexpr const char* kUsage =
+constexpr const char* kModbusSimUsage =
     "usage: mdhd modbus-sim JOB.json --port P [--speed S] [--host H] [--map MAP.json] [--loop] "
     "[--exit-after SEC]\n";
 
@@ -194,7 +194,7 @@ int runModbusSim(const Args& args, std::ostream& out, std::ostream& err) {
   try {
     a = parseArgs(args);
   } catch (const std::invalid_argument& e) {
-    err << "mdhd modbus-sim: " << e.what() << "\n" << kUsage;
+    err << "mdhd modbus-sim: " << e.what() << "\n" << kModbusSimUsage;
     return 2;
   }
   g_stop = 0;

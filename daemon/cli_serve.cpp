@@ -10,7 +10,7 @@
 namespace mdhd::cli {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kServeUsage =
     "usage: mdhd serve [--config FILE] [--bind ADDR] [--port P] [--data-dir DIR]\n"
     "                  [--token T]... [--workers N] [--http-threads N] [--queue-limit N]\n"
     "                  [--max-body-bytes N] [--max-program-bytes N] [--max-job-seconds S]\n"
@@ -23,7 +23,7 @@ constexpr const char* kUsage =
 int runServe(const Args& args, std::ostream& out, std::ostream& err) {
   for (const std::string& a : args) {
     if (a == "--help" || a == "-h") {
-      out << kUsage;
+      out << kServeUsage;
       return 0;
     }
   }
@@ -35,7 +35,7 @@ int runServe(const Args& args, std::ostream& out, std::ostream& err) {
     service::applyEnvironment(config, env);
     service::applyFlags(config, args);
   } catch (const protocol::FieldError& e) {
-    err << "mdhd serve: " << e.what() << "\n" << kUsage;
+    err << "mdhd serve: " << e.what() << "\n" << kServeUsage;
     return 2;
   }
   // Signals are taken by sigwait below, so block them before any thread starts.
