@@ -48,13 +48,14 @@ class ThreeMap {
   double fullHeight() const { return dir_.sign > 0 ? box_.hi[dir_.axis] : box_.lo[dir_.axis]; }
 
   // Number of solid vertices of a column with height h (inline: the hottest call).
-  // Inside (lo, hi) the height is >= 0, so a truncation is its floor: no libm call.
+  // Floor and ceiling by truncation and one compare: no libm call.
   int solidCount(double h) const {
     const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
     if (dir_.sign > 0) {
       if (!(h >= lo)) return 0;  // -inf and NaN too
       if (h >= hi) return hi - lo + 1;
-      return static_cast<int>(h) - lo + 1;
+      const int f = static_cast<int>(h);  // truncation: the floor unless h < 0
+      return (f > h ? f - 1 : f) - lo + 1;
     }
     if (!(h <= hi)) return h != h ? hi - lo + 1 : 0;
     if (h <= lo) return hi - lo + 1;

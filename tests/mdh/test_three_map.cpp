@@ -26,19 +26,20 @@ TEST(ThreeMap, SolidCountFollowsFromTheHeight) {
 TEST(ThreeMap, SolidCountIsTheFloorAndCeilingFormulaEverywhere) {
   // The count is computed without floor/ceil: the same as the vertices k <= h (+z)
   // or k >= h (-z) of the box, for heights on, next to and far from every level.
-  const GridBox box{{0, 0, 3}, {4, 3, 40}};
-  for (int sign : {1, -1}) {
-    const ThreeMap m(box, Direction{2, sign}, true);
-    for (int k = -2; k <= 43; ++k)
-      for (double h : {double(k), std::nextafter(double(k), -1e9), std::nextafter(double(k), 1e9),
-                       k + 0.5, k - 1e-17, k + 1e-12}) {
-        int expected = 0;
-        for (int level = 3; level <= 40; ++level) expected += sign > 0 ? level <= h : level >= h;
-        EXPECT_EQ(m.solidCount(h), expected) << sign << " " << h;
-      }
-    EXPECT_EQ(m.solidCount(1e300), sign > 0 ? 38 : 0);
-    EXPECT_EQ(m.solidCount(-1e300), sign > 0 ? 0 : 38);
-  }
+  for (const GridBox& box : {GridBox{{0, 0, 3}, {4, 3, 40}}, GridBox{{0, 0, -7}, {4, 3, 30}}})
+    for (int sign : {1, -1}) {
+      const ThreeMap m(box, Direction{2, sign}, true);
+      const int lo = box.lo[2], hi = box.hi[2];
+      for (int k = lo - 5; k <= hi + 3; ++k)
+        for (double h : {double(k), std::nextafter(double(k), -1e9), std::nextafter(double(k), 1e9),
+                         k + 0.5, k - 1e-17, k + 1e-12}) {
+          int expected = 0;
+          for (int level = lo; level <= hi; ++level) expected += sign > 0 ? level <= h : level >= h;
+          EXPECT_EQ(m.solidCount(h), expected) << sign << " " << h;
+        }
+      EXPECT_EQ(m.solidCount(1e300), sign > 0 ? hi - lo + 1 : 0);
+      EXPECT_EQ(m.solidCount(-1e300), sign > 0 ? 0 : hi - lo + 1);
+    }
 }
 
 TEST(ThreeMap, StraddledLevelsBetweenTwoColumns) {
