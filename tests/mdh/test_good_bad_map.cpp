@@ -48,6 +48,32 @@ TEST(GoodBadMap, UnresolvedSurfaceIsWhatTheOldDirectionCannotHold) {
   EXPECT_TRUE(x.hasUnresolvedBad);
 }
 
+// A +z cell with a wide cave through it along y (x 1..3, z 1..3 of 0..6): the
+// unresolved surface is the cave's walls, floor and roof, not the empty run
+// inside it or the solid under it, so lines that cross none of its surface are
+// resolved (thesis 3.2: "rays that intersect the unresolved surface").
+TEST(GoodBadMap, OnlyLinesCrossingTheUnresolvedSurfaceAreUnresolved) {
+  const GridBox box{{0, 0, 0}, {6, 4, 6}};
+  SampleGrid g = SampleGrid::solid(box);
+  for (int y = 0; y <= 4; ++y)
+    for (int x = 1; x <= 3; ++x)
+      for (int z = 1; z <= 3; ++z) g.state(g.index(x, y, z)) = SampleGrid::kWasSolid;
+  markUnresolved(g, Direction{2, 1});
+  for (int z : {0, 1, 3, 4}) EXPECT_TRUE(g.state(g.index(2, 1, z)) & SampleGrid::kUnresolved);
+  EXPECT_FALSE(g.state(g.index(2, 1, 2)) & SampleGrid::kUnresolved);  // inside the cave
+  EXPECT_FALSE(g.state(g.index(2, 1, 5)) & SampleGrid::kUnresolved);  // above the roof
+  const GoodBadMap y = buildGoodBadMap(g, 1);                         // pixels over (z, x)
+  EXPECT_FALSE(y.unresolved[y.at(2, 2)]);                             // z 2, x 2: empty all along
+  EXPECT_FALSE(y.unresolved[y.at(0, 2)]);      // z 0, x 2: solid all along, under the floor
+  const GoodBadMap x = buildGoodBadMap(g, 0);  // pixels over (y, z)
+  EXPECT_EQ(x.type[x.at(1, 2)], Pixel::kBad);  // y 1, z 2: through both walls
+  EXPECT_TRUE(x.unresolved[x.at(1, 2)]);
+  EXPECT_FALSE(x.unresolved[x.at(1, 5)]);  // y 1, z 5: solid above the roof
+  const GoodBadMap z = buildGoodBadMap(g, 2);
+  EXPECT_TRUE(z.unresolved[z.at(2, 1)]);   // x 2, y 1: floor and roof
+  EXPECT_FALSE(z.unresolved[z.at(5, 1)]);  // x 5, y 1: solid beside the cave
+}
+
 TEST(RegionBounds, TightRectanglesOfConnectedRegions) {
   GoodBadMap m;
   m.axis = 2;
