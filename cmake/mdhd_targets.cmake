@@ -51,6 +51,14 @@ function(mdhd_tests label)
   if(NOT ARG_NO_UNITY)
     # Batch 0: the whole folder in one translation unit (2 cores, 11 folders).
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)
+    if(MDHD_SANITIZE)
+      # Under ASan + UBSan the test code itself at -O0: -O1 doubled the compile
+      # time of these unity files (ASan test objects 323 -> 175 CPU s), same test
+      # run time; the code under test, the libraries, stays at -O1 and the
+      # instrumentation is the same. Not for tests/mdh: its files are small, and
+      # its brute-force reference model ran 2.5x slower at -O0.
+      target_compile_options(${target} PRIVATE -O0)
+    endif()
   endif()
   foreach(dep ${ARG_DEPENDS})
     add_dependencies(${target} ${dep})
