@@ -63,5 +63,7 @@ function(mdhd_tests label)
   foreach(dep ${ARG_DEPENDS})
     add_dependencies(${target} ${dep})
   endforeach()
-  gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${label})
+  # NO_PRETTY_VALUES: a parameter's printed value (a pointer, padding bytes) would make
+  # ctest's test names change from build to build; the instantiations name their cases.
+  gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 NO_PRETTY_VALUES PROPERTIES LABELS ${label})
 endfunction()

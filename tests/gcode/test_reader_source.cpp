@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <string>
 
 #include "sim/gcode/error.h"
 #include "sim/gcode/source.h"
@@ -83,7 +84,11 @@ TEST_P(LineSourceTest, OverlongLineIsAnError) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Sources, LineSourceTest, ::testing::Values(&fromString, &fromStream));
+// Named, so ctest's names stay the same from build to build (not pointer values).
+INSTANTIATE_TEST_SUITE_P(Sources, LineSourceTest, ::testing::Values(&fromString, &fromStream),
+                         [](const auto& p) {
+                           return std::string(p.param == &fromString ? "String" : "Stream");
+                         });
 
 }  // namespace
 }  // namespace mdhd::gcode

@@ -3,6 +3,7 @@
 // the tools, directions, splits, bricks and forced cells (engine guarantee
 // the mesher relies on).
 #include <cstdio>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -64,7 +65,12 @@ std::vector<Case> cases() {
   return out;
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, SharedSamples, ::testing::ValuesIn(cases()));
+// Named from the case, so ctest's names stay the same from build to build.
+INSTANTIATE_TEST_SUITE_P(Seeds, SharedSamples, ::testing::ValuesIn(cases()), [](const auto& p) {
+  const Case& c = p.param;
+  return "seed" + std::to_string(c.seed) + (c.threeWay ? "_threemap" : "_heightmap") + "_brick" +
+         std::to_string(c.brick) + "_density" + std::to_string(static_cast<int>(c.density));
+});
 
 // Forced one-cube cells drop vertices their neighbours hold (sub-grid
 // features): the drops reach every neighbour.

@@ -1,6 +1,7 @@
 // Randomised 5-axis cut sequences: whatever cells, directions and splits the
 // engine makes, the mesh is closed and encloses the engine's volume.
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -103,7 +104,12 @@ TEST(RandomCuts, ThreeMapMeshIgnoresTheCellLayout) {
   EXPECT_EQ(triangles[2], triangles[0]);
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, RandomCuts, ::testing::ValuesIn(cases()));
+// Named from the case, so ctest's names stay the same from build to build.
+INSTANTIATE_TEST_SUITE_P(Seeds, RandomCuts, ::testing::ValuesIn(cases()), [](const auto& p) {
+  const Case& c = p.param;
+  return "seed" + std::to_string(c.seed) + (c.threeWay ? "_threemap" : "_heightmap") + "_brick" +
+         std::to_string(c.brick);
+});
 
 }  // namespace
 }  // namespace mdhd::mesh
