@@ -32,8 +32,8 @@ struct Scratch {
 };
 
 // edgeCrossingAfterCut with its last answer kept: up a wall beside the tool, the
-// levels of one edge in the tool's prism band (IntervalCache) ask the same
-// question (same line slot, same old crossing) hundreds of times per step.
+// levels of one edge in the tool's prism band (IntervalCache: one line slot for
+// all of them) ask the same question hundreds of times per step.
 class CrossingMemo {
  public:
   double operator()(bool o0, bool o1, double oc, bool n0, bool n1, int k,
@@ -52,35 +52,6 @@ class CrossingMemo {
   double oc_ = 0.0, value_ = 0.0;
   int k_ = 0;
   unsigned states_ = 0;
-};
-
-// The tool's lines along one row's edges (axis x, fixed coordinate on y) level by
-// level: levels in the tool's prism band share one line, asked for once per row.
-class RowLines {
- public:
-  RowLines(const IntervalCache& cache, int levelAxis, int x, std::array<int, 3> p)
-      : cache_(cache), band_(cache.prismBand()), a_(levelAxis), x_(x), p_(p) {
-    if (band_.axis != levelAxis) band_ = {};
-  }
-  std::span<const Span> at(int level) {
-    if (band_.holds(level)) {
-      if (!haveBand_) bandLine_ = fetch(band_.lo), haveBand_ = true;
-      return bandLine_;
-    }
-    return fetch(level);
-  }
-
- private:
-  std::span<const Span> fetch(int level) {
-    p_[a_] = level;
-    return cache_.line(x_, p_[axisU(x_)], p_[axisV(x_)]);
-  }
-  const IntervalCache& cache_;
-  IntervalCache::PrismBand band_;
-  int a_, x_;
-  std::array<int, 3> p_;
-  std::span<const Span> bandLine_;
-  bool haveBand_ = false;
 };
 
 // One solid run from the base face: its far end is the column's new height.
@@ -184,7 +155,6 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
   std::array<int, 3> p{};
   p[y] = box.lo[y] + r;
   CrossingMemo crossing;
-  RowLines lines(cache, a, x, p);
   for (int e = 0; e < m.edgesInRow(family); ++e) {
     const double oh0 = m.rowHeight(family, r, e), oh1 = m.rowHeight(family, r, e + 1);
     const double nh0 = s.heights[e], nh1 = s.heights[e + 1];
@@ -200,7 +170,8 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
       const bool hadOne = k >= ofirst && k < ofirst + ocount;
       double value = hadOne ? src[pos + (k - ofirst)] : std::nan("");
       if (reached) {
-        const auto tool = lines.at(k);
+        p[a] = k;
+        const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
         value = crossing(m.solidAt(oh0, k), m.solidAt(oh1, k), value, m.solidAt(nh0, k),
                          m.solidAt(nh1, k), box.lo[x] + e, tool, s.pieces);
         // Untouched edges keep their layout: compare with the old crossing.
@@ -236,7 +207,6 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
   bool moved = false;
   std::size_t pos = 0;
   CrossingMemo crossing;
-  RowLines lines(cache, a, x, p);
   for (int e = 0; e < e1; ++e) {
     const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
     int first = 0, count = 0;
@@ -250,7 +220,8 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
     bool edgeMoved = false;
     const bool s0 = m.solidAt(h0, first), s1 = m.solidAt(h1, first);  // alike on every level
     for (int i = 0; i < count; ++i) {
-      const auto tool = lines.at(first + i);
+      p[a] = first + i;
+      const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
       if (tool.empty()) continue;
       const double value = crossing(s0, s1, c[i], s0, s1, box.lo[x] + e, tool, s.pieces);
       if (!(value == c[i])) {

@@ -41,6 +41,22 @@ double snap(double g) {
   return std::abs(g - r) < 1e-9 ? r : g;
 }
 
+// Sorts spans by their start and merges those that overlap or touch, in place;
+// returns how many are left. The contract says sorted and disjoint already; the
+// arithmetic relies on it, so make sure.
+std::size_t sortAndMerge(Span* s, std::size_t n) {
+  auto byLo = [](const Span& x, const Span& y) { return x.lo < y.lo; };
+  if (!std::is_sorted(s, s + n, byLo)) std::sort(s, s + n, byLo);
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (kept > 0 && s[k].lo <= s[kept - 1].hi)
+      s[kept - 1].hi = std::max(s[kept - 1].hi, s[k].hi);
+    else
+      s[kept++] = s[k];
+  }
+  return kept;
+}
+
 }  // namespace
 
 IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid, LineStore* store,
@@ -83,13 +99,8 @@ IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid,
     const int khi = static_cast<int>(std::clamp(ghi, -1.0, grid.cubes[bandAxis] + 1.0));
     if (std::isfinite(glo) && std::isfinite(ghi) && khi > klo) {
       band_ = {bandAxis, klo, khi};
-      for (int a = 0; a < 3; ++a) {
-        if (a == bandAxis) continue;
-        Lines& l = lines_[a];
-        (axisU(a) == bandAxis ? l.bandOnU : l.bandOnV) = true;
-        l.bandLo = klo;
-        l.bandHi = khi;
-      }
+      for (int a = 0; a < 3; ++a)
+        if (a != bandAxis) lines_[a].band = axisU(a) == bandAxis ? 0 : 1;
     }
   }
   if (store_ == nullptr) {
@@ -110,20 +121,14 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
     return Span{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
   };
   if (buf.size() <= std::size(slot.inline_)) {
-    // The usual answer (a convex tool: one interval, or none) goes straight into
-    // the slot: the same sort, merge and drops as below, without the vectors.
-    std::uint32_t n = 0;
+    // The usual answer (a convex tool: one interval, or none) is cleaned in the
+    // slot itself, without the vector.
+    std::size_t n = 0;
     for (const geom::Interval& i : buf) {
       const Span s = toSpan(i);
       if (s.hi > s.lo) slot.inline_[n++] = s;  // drops NaN and inverted intervals
     }
-    if (n == 2) {
-      Span& a = slot.inline_[0];
-      Span& b = slot.inline_[1];
-      if (b.lo < a.lo) std::swap(a, b);
-      if (b.lo <= a.hi) a.hi = std::max(a.hi, b.hi), n = 1;
-    }
-    slot.count = n;
+    slot.count = static_cast<std::uint32_t>(sortAndMerge(slot.inline_, n));
     slot.data = slot.inline_;
     return;
   }
@@ -133,17 +138,7 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
     const Span s = toSpan(i);
     if (s.hi > s.lo) spans.push_back(s);  // drops NaN and inverted intervals
   }
-  // The contract says sorted and disjoint; make sure, the arithmetic relies on it.
-  auto byLo = [](const Span& x, const Span& y) { return x.lo < y.lo; };
-  if (!std::is_sorted(spans.begin(), spans.end(), byLo))
-    std::sort(spans.begin(), spans.end(), byLo);
-  std::size_t kept = 0;
-  for (std::size_t k = 0; k < spans.size(); ++k) {
-    if (kept > 0 && spans[k].lo <= spans[kept - 1].hi)
-      spans[kept - 1].hi = std::max(spans[kept - 1].hi, spans[k].hi);
-    else
-      spans[kept++] = spans[k];
-  }
+  const std::size_t kept = sortAndMerge(spans.data(), spans.size());
   slot.count = static_cast<std::uint32_t>(kept);
   if (kept <= std::size(slot.inline_)) {
     std::copy_n(spans.begin(), kept, slot.inline_);

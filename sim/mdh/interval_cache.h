@@ -72,8 +72,8 @@ class IntervalCache {
     const Lines& l = lines_[axis];
     if (iu < l.ulo || iu > l.uhi || iv < l.vlo || iv > l.vhi) return {};
     // Inside the solid's prism band one line answers for the whole stack.
-    if (l.bandOnU && iu > l.bandLo && iu <= l.bandHi) iu = l.bandLo;
-    if (l.bandOnV && iv > l.bandLo && iv <= l.bandHi) iv = l.bandLo;
+    if (l.band == 0 && band_.holds(iu)) iu = band_.lo;
+    if (l.band == 1 && band_.holds(iv)) iv = band_.lo;
     const std::size_t i =
         l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
     if (store_->states_[i].load(std::memory_order_acquire) != stamp_) fillOnce(axis, iu, iv, i);
@@ -100,9 +100,7 @@ class IntervalCache {
   struct Lines {
     int ulo = 1, uhi = 0, vlo = 1, vhi = 0;  // empty unless the box is not
     std::size_t nu = 0, base = 0;
-    // The prism band's grid levels on the u or the v coordinate (LineSolid::prismBand).
-    bool bandOnU = false, bandOnV = false;
-    int bandLo = 0, bandHi = -1;
+    int band = -1;  // band_'s levels are on this line's u (0) or v (1) coordinate, or none
   };
   [[noreturn]] static void wrongAxis();
   void fillOnce(int axis, int iu, int iv, std::size_t i) const;

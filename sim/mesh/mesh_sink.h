@@ -3,6 +3,7 @@
 // vertices' identities, so a consumer can share vertices (and check that the
 // mesh is closed) without comparing coordinates, or ignore them and stream.
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -44,6 +45,22 @@ class MeshSink {
   virtual ~MeshSink() = default;
   virtual void triangle(const MeshVertex& a, const MeshVertex& b, const MeshVertex& c,
                         bool exterior) = 0;
+};
+
+// A sink that keeps every triangle, in order (parallel meshing buffers runs in
+// them; tests compare meshes with them).
+struct BufferedTriangle {
+  MeshVertex v[3];
+  bool exterior = false;
+};
+
+class TriangleBuffer final : public MeshSink {
+ public:
+  void triangle(const MeshVertex& a, const MeshVertex& b, const MeshVertex& c,
+                bool exterior) override {
+    tris.push_back({{a, b, c}, exterior});
+  }
+  std::vector<BufferedTriangle> tris;
 };
 
 }  // namespace mdhd::mesh

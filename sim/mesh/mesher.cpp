@@ -46,6 +46,7 @@ class Mesher {
   double edgeT(const GridPoint& p, int axis, bool startSolid);
   LoopPoint crossingPoint(const GridPoint& p, int axis, double t) const;
   void emit(std::span<const LoopPoint> loop, bool exterior);
+  void triangle(const LoopPoint& a, const LoopPoint& b, const LoopPoint& c, bool exterior);
   MeshVertex vertex(const LoopPoint& p) const {
     return MeshVertex{view_.origin() + p.g * view_.spacing(), p.key};
   }
@@ -98,16 +99,16 @@ void Mesher::emit(std::span<const LoopPoint> loop, bool exterior) {
     mid.key = VertexKey{nextInner_++, VertexKind::kInner};
   }
   const int n = static_cast<int>(loop.size());
-  for (const auto& t : tris_) {
-    const LoopPoint& a = t[0] == n ? mid : loop[t[0]];
-    const LoopPoint& b = t[1] == n ? mid : loop[t[1]];
-    const LoopPoint& c = t[2] == n ? mid : loop[t[2]];
-    if (glm::length(glm::cross(b.g - a.g, c.g - a.g)) <= kMinDoubleArea)
-      ++stats_.degenerateTriangles;
-    sink_.triangle(vertex(a), vertex(b), vertex(c), exterior);
-    ++stats_.triangles;
-    stats_.exteriorTriangles += exterior ? 1 : 0;
-  }
+  for (const auto& t : tris_)
+    triangle(t[0] == n ? mid : loop[t[0]], t[1] == n ? mid : loop[t[1]],
+             t[2] == n ? mid : loop[t[2]], exterior);
+}
+
+void Mesher::triangle(const LoopPoint& a, const LoopPoint& b, const LoopPoint& c, bool exterior) {
+  if (glm::length(glm::cross(b.g - a.g, c.g - a.g)) <= kMinDoubleArea) ++stats_.degenerateTriangles;
+  sink_.triangle(vertex(a), vertex(b), vertex(c), exterior);
+  ++stats_.triangles;
+  stats_.exteriorTriangles += exterior ? 1 : 0;
 }
 
 void Mesher::cube(const GridPoint& c) {
@@ -238,11 +239,7 @@ void Mesher::mergedFace(const LeafInfo& l, int faceId) {
   mid.key = VertexKey{nextInner_++, VertexKind::kInner};
   ++stats_.centreVertices;
   const std::size_t n = rim_.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    sink_.triangle(vertex(mid), vertex(rim_[i]), vertex(rim_[(i + 1) % n]), true);
-    ++stats_.triangles;
-    ++stats_.exteriorTriangles;
-  }
+  for (std::size_t i = 0; i < n; ++i) triangle(mid, rim_[i], rim_[(i + 1) % n], true);
 }
 
 void Mesher::uniformLeaf(const LeafInfo& l) {

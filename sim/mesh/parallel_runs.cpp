@@ -10,22 +10,8 @@ namespace mdhd::mesh {
 
 namespace {
 
-struct Buffered {
-  MeshVertex v[3];
-  bool exterior;
-};
-
-class BufferSink final : public MeshSink {
- public:
-  void triangle(const MeshVertex& a, const MeshVertex& b, const MeshVertex& c,
-                bool exterior) override {
-    tris.push_back({{a, b, c}, exterior});
-  }
-  std::vector<Buffered> tris;
-};
-
 struct RunResult {
-  std::vector<Buffered> tris;
+  std::vector<BufferedTriangle> tris;
   MeshStats stats;
   bool done = false;
 };
@@ -69,7 +55,7 @@ void meshInParallel(const std::vector<int>& leaves, int threads, MeshSink& sink,
         if (error || next >= runs) return;
         i = next++;
       }
-      BufferSink buffer;
+      TriangleBuffer buffer;
       MeshStats s;
       try {
         const std::size_t first = i * perRun;
@@ -98,7 +84,7 @@ void meshInParallel(const std::vector<int>& leaves, int threads, MeshSink& sink,
         if (error) break;
         r = std::move(results[i]);
       }
-      for (Buffered& t : r.tris) {
+      for (BufferedTriangle& t : r.tris) {
         for (MeshVertex& v : t.v)
           if (v.key.kind == VertexKind::kInner) v.key.where += innerBase;
         sink.triangle(t.v[0], t.v[1], t.v[2], t.exterior);

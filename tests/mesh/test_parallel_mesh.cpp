@@ -12,21 +12,7 @@
 namespace mdhd::mesh {
 namespace {
 
-struct Recorded {
-  MeshVertex v[3];
-  bool exterior;
-};
-
-class RecordingSink final : public MeshSink {
- public:
-  void triangle(const MeshVertex& a, const MeshVertex& b, const MeshVertex& c,
-                bool exterior) override {
-    tris.push_back({{a, b, c}, exterior});
-  }
-  std::vector<Recorded> tris;
-};
-
-void expectSame(const std::vector<Recorded>& a, const std::vector<Recorded>& b) {
+void expectSame(const std::vector<BufferedTriangle>& a, const std::vector<BufferedTriangle>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(a[i].exterior, b[i].exterior) << i;
@@ -50,13 +36,13 @@ TEST(ParallelMesh, SameTrianglesKeysAndStatsAsOneThread) {
   for (bool threeWay : {true, false}) {
     mdh::Stock stock({{0, 0, 0}, {6, 6, 4}}, testing::stockOptions(8, threeWay, 8));
     cut(stock, 3);
-    RecordingSink one;
+    TriangleBuffer one;
     MeshOptions o;
     const MeshStats s1 = meshStock(stock, one, o);
     EXPECT_GT(s1.leaves, 16);
     EXPECT_GT(s1.triangles, 10000);
     for (int threads : {2, 3}) {
-      RecordingSink many;
+      TriangleBuffer many;
       o.threads = threads;
       const MeshStats s = meshStock(stock, many, o);
       expectSame(one.tris, many.tris);
@@ -76,7 +62,7 @@ TEST(ParallelMesh, RegionToo) {
   cut(stock, 5);
   MeshOptions o;
   o.region = geom::Aabb{{1, 1, 0}, {3.5, 4, 4}};
-  RecordingSink one, two;
+  TriangleBuffer one, two;
   meshStock(stock, one, o);
   o.threads = 2;
   meshStock(stock, two, o);
