@@ -239,12 +239,6 @@ TEST(TranslationalSweep, DegenerateMovesStayFiniteAndConsistent) {
     }
 }
 
-}  // namespace
-}  // namespace mdhd::geom
-
-namespace mdhd::geom {
-namespace {
-
 TEST(TranslationalSweep, PrismBandIsWhereEverySectionIsTheWidestDisk) {
   // A ball (R 3, flutes 12) on +z moving down and sideways: from z = 1 to z = -1. Its
   // sections are the stadium for max(tip z) + R <= c <= min(tip z) + flutes.

@@ -8,6 +8,7 @@
 #include "sim/geometry/swept_volume.h"
 #include "sim/geometry/tool_part.h"
 #include "sim/mdh/stock.h"
+#include "tests/geometry/geometry_test_support.h"
 #include "tests/mdh/analytic_solids.h"
 
 namespace mdhd::mdh {
@@ -161,24 +162,12 @@ TEST(IntervalCache, AStockCutAsksEachLineAtMostOnce) {
   EXPECT_LE(counting.calls, 25 * 13 + 13 * 25 + 25 * 25);
 }
 
-}  // namespace
-}  // namespace mdhd::mdh
-
-namespace mdhd::mdh {
-namespace {
-
 TEST(IntervalCache, LinesInTheToolsPrismBandShareOneQueryAndMatchTheirOwn) {
   // A vertical ball swept sideways: every x and y line above its ball part asks the
   // one line at the band's first level, and gets what it would have got itself.
   const GridSpec g = grid();
-  geom::Tool tool;
-  tool.number = 1;
-  tool.shape = geom::ToolShape::kBall;
-  tool.diameter = 2.0;
-  tool.flute_length = 3.0;
-  tool.length = 20.0;
-  tool.shank_diameter = 2.0;
-  const geom::ToolPart part = geom::makeToolPart(tool, geom::ToolPartKind::kCutter);
+  const geom::ToolPart part = geom::makeToolPart(
+      geom::testing::makeTool(geom::ToolShape::kBall, 2.0, 3.0), geom::ToolPartKind::kCutter);
   const glm::dvec3 z(0, 0, 1);
   const geom::SweptVolume sweep =
       geom::SweptVolume::between(part, {{4.0, 3.9, 2.0}, z}, {{5.1, 4.3, 1.8}, z}, 0, 0.01);
