@@ -127,13 +127,6 @@ bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
   return true;
 }
 
-// The levels where two columns of solid counts f0 and f1 differ (ThreeMap::straddle).
-void band(const ThreeMap& m, int f0, int f1, int& first, int& count) {
-  count = std::abs(f0 - f1);
-  first = m.direction().sign > 0 ? m.box().lo[m.axis()] + std::min(f0, f1)
-                                 : m.box().hi[m.axis()] - std::max(f0, f1) + 1;
-}
-
 int countAt(const ThreeMap& m, const Scratch& s, int family, int r, int e) {
   return s.counts[family == 0 ? r * m.columnsU() + e : e * m.columnsU() + r];
 }
@@ -159,8 +152,8 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
     const double oh0 = m.rowHeight(family, r, e), oh1 = m.rowHeight(family, r, e + 1);
     const double nh0 = s.heights[e], nh1 = s.heights[e + 1];
     int ofirst = 0, ocount = 0, nfirst = 0, ncount = 0;
-    band(m, countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), ofirst, ocount);
-    band(m, s.newCounts[e], s.newCounts[e + 1], nfirst, ncount);
+    m.straddleCounts(countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), ofirst, ocount);
+    m.straddleCounts(s.newCounts[e], s.newCounts[e + 1], nfirst, ncount);
     const bool touched = s.changed[e] || s.changed[e + 1];
     const bool reached = touched || (e >= e0 && e < e1);
     const std::size_t start = dst.size();
@@ -210,7 +203,7 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
   for (int e = 0; e < e1; ++e) {
     const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
     int first = 0, count = 0;
-    band(m, countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), first, count);
+    m.straddleCounts(countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), first, count);
     if (e < e0 || count == 0) {
       pos += count;
       continue;

@@ -22,8 +22,10 @@ ThreeMap::ThreeMap(const GridBox& box, Direction dir, bool threeWay)
 }
 
 void ThreeMap::straddle(double h1, double h2, int& first, int& count) const {
-  const int f1 = solidCount(h1);
-  const int f2 = solidCount(h2);
+  straddleCounts(solidCount(h1), solidCount(h2), first, count);
+}
+
+void ThreeMap::straddleCounts(int f1, int f2, int& first, int& count) const {
   count = std::abs(f1 - f2);
   first = dir_.sign > 0 ? box_.lo[dir_.axis] + std::min(f1, f2)
                         : box_.hi[dir_.axis] - std::max(f1, f2) + 1;
@@ -60,12 +62,11 @@ double polylineIntegral(double len0, double len1, const Point* pts, std::size_t 
 // f0, f1: the two columns' solid counts; len0, len1: their solid lengths.
 double ThreeMap::profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
                                  const double* crossings) const {
-  const int count = std::abs(f0 - f1);
+  int first = 0, count = 0;
+  straddleCounts(f0, f1, first, count);
   if (!threeWay_ || count == 0) return 0.5 * (len0 + len1);
   const int a = dir_.axis;
   const double lo = box_.lo[a], hi = box_.hi[a];
-  const int first =
-      dir_.sign > 0 ? box_.lo[a] + std::min(f0, f1) : box_.hi[a] - std::max(f0, f1) + 1;
   if (count == 1) {
     const Point p{std::clamp(crossings[0] - edgeStart, 0.0, 1.0),
                   dir_.sign > 0 ? first - lo : hi - first};

@@ -65,6 +65,8 @@ class ThreeMap {
   bool solidAt(double h, int level) const { return dir_.sign > 0 ? level <= h : level >= h; }
   // The grid levels where columns h1 and h2 differ: first, first+1, ... (count).
   void straddle(double h1, double h2, int& first, int& count) const;
+  // The same from the two columns' solid counts (a caller that has them already).
+  void straddleCounts(int f1, int f2, int& first, int& count) const;
   // Solid length of a column in grid units.
   double columnLength(double h) const {
     const double lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
