@@ -10,6 +10,7 @@
 #include "sim/check/overhang_area.h"
 #include "sim/geometry/pose_interpolation.h"
 #include "sim/geometry/swept_volume.h"
+#include "sim/geometry/tool_fresh_region.h"
 #include "sim/kinematics/joint_path.h"
 #include "sim/kinematics/limits.h"
 #include "sim/kinematics/motion_time.h"
@@ -329,7 +330,17 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
   ScopeTimer timer(timing_.cut_ms);
   glm::dvec3 dir = step.a.pose.axis + step.b.pose.axis;
   dir = glm::dot(dir, dir) > 1e-12 ? glm::normalize(dir) : step.b.pose.axis;
-  const mdh::CutResult r = stock_->cut(step.cutter, dir);
+  const geom::ToolPose& a = step.a.pose;
+  const bool fromLastCut = cut_end_ && cut_end_part_ == &step.parts.cutter &&
+                           cut_end_->tip == a.tip && cut_end_->axis == a.axis;
+  const auto fresh = fromLastCut ? geom::freshRegion(step.parts.cutter, a, step.b.pose)
+                                 : std::optional<geom::FreshRegion>();
+  cut_end_.reset();
+  const mdh::CutResult r = stock_->cut(step.cutter, dir, fresh ? &*fresh : nullptr);
+  if (a.axis == step.b.pose.axis) {
+    cut_end_ = step.b.pose;
+    cut_end_part_ = &step.parts.cutter;
+  }
   if (r.removed_volume > 0.0) {
     removed = true;
     toolUse(stats_, m.tool).removed_volume_mm3 += r.removed_volume;

@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -24,6 +25,7 @@
 #include "sim/geometry/swept_volume.h"
 #include "sim/geometry/tool.h"
 #include "sim/geometry/tool_part.h"
+#include "sim/geometry/tool_pose.h"
 #include "sim/kinematics/kinematics.h"
 #include "sim/mdh/stock.h"
 
@@ -143,6 +145,11 @@ class Simulation final : public gcode::MotionSink {
   SimulationOptions options_;
   double contact_tolerance_ = 0.0;
   int current_tool_ = -1;
+  // Where the last cut ended when it was a translation (whose sweep holds its end
+  // pose exactly), and with which cutter: a step starting there only needs the
+  // stock where it reaches beyond that pose (geom::freshRegion). Not copied by fork().
+  std::optional<geom::ToolPose> cut_end_;
+  const geom::ToolPart* cut_end_part_ = nullptr;
 
   Episodes episodes_;
   RunStats stats_;

@@ -52,7 +52,7 @@ void normalize(Cell& cell) {
 // The common case: the cell's own direction still holds the cut.
 bool fastCutCell(Cell& cell, const CutContext& ctx) {
   double delta = 0.0;
-  const FastCut r = fastCut(*cell.map, ctx.cache, delta);
+  const FastCut r = fastCut(*cell.map, ctx.cache, ctx.reach, delta);
   if (r == FastCut::kOverhang) return false;
   if (r == FastCut::kDone) {
     setVolume(cell, cell.volume + delta, ctx);
@@ -211,10 +211,10 @@ void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
 }
 
 void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
-  if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.cache.touched()).empty()) return;
+  if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.reach).empty()) return;
   if (cell.state == CellState::kSolid) {
     // Probe first: most solid cells under the tool's box lose nothing.
-    if (!toolRemovesSomeVertex(cell.box, ctx.cache)) return;
+    if (!toolRemovesSomeVertex(cell.box.intersect(ctx.reach), ctx.cache)) return;
     const Direction d = guessDirection(ctx.toolDirection);
     cell.map = std::make_unique<ThreeMap>(cell.box, d, ctx.threeWay);
     cell.state = CellState::kPartial;
@@ -232,7 +232,7 @@ void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
 }  // namespace
 
 void cutCell(Cell& cell, const CutContext& ctx) {
-  if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.cache.touched()).empty()) return;
+  if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.reach).empty()) return;
   if (cell.state == CellState::kInner) {
     for (auto& child : cell.child) cutCell(*child, ctx);
     return;

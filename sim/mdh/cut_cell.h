@@ -20,6 +20,8 @@ namespace mdhd::mdh {
 struct CutContext {
   const GridSpec& grid;
   const IntervalCache& cache;
+  // Where the cut can change anything: the cache's box, or less (Stock::cut's fresh region).
+  GridBox reach;
   const std::vector<Rule>& rules;
   bool threeWay = true;
   glm::dvec3 toolDirection{0.0, 0.0, 1.0};

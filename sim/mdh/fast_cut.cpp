@@ -90,11 +90,10 @@ bool cutZColumn(const ThreeMap& m, double h, std::span<const Span> tool, Scratch
 // them (vertex_rule.h), the new height is the crossing of the top edge as
 // every cell holding that edge computes it.
 bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
-                   const std::array<int, 3>& base, const IntervalCache& cache, Scratch& s,
-                   double& out) {
+                   const std::array<int, 3>& base, const IntervalCache& cache, const GridBox& reach,
+                   Scratch& s, double& out) {
   const int a = m.axis(), n = m.levels(), lo = m.box().lo[a];
   const bool up = m.direction().sign > 0;
-  const GridBox& reach = cache.touched();
   s.was.resize(n);
   s.now.resize(n);
   bool changed = false;
@@ -247,10 +246,11 @@ void groupByRow(const ThreeMap& m, int family, Scratch& s) {
 
 }  // namespace
 
-FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) {
+FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+                double& volumeDelta) {
   thread_local Scratch s;
   volumeDelta = 0.0;
-  const GridBox region = map.box().intersect(cache.touched());
+  const GridBox region = map.box().intersect(reach);
   if (region.empty()) return FastCut::kUnchanged;
   const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
   const GridBox& box = map.box();
@@ -266,15 +266,16 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, double& volumeDelta) 
       // In a z map, most columns under the tool are not reached below their
       // top (behind the tool, above the part): they keep their height, as
       // cutZColumn would find. (Side maps take their vertices from z lines.)
-      if (a == 2 && (map.solidCount(h) == 0 || (up ? tool.front().lo >= std::min(h, top)
-                                                   : tool.back().hi <= std::max(h, bottom))))
+      if (a == 2 &&
+          (map.solidCount(h) == 0 || (up ? tool.front().lo >= std::min(h, top) - kToolSlack
+                                         : tool.back().hi <= std::max(h, bottom) + kToolSlack)))
         continue;
       double nh = 0.0;
       std::array<int, 3> base{};
       base[u] = cu;
       base[v] = cv;
       const bool ok = a == 2 ? cutZColumn(map, h, tool, s, nh)
-                             : cutSideColumn(map, h, tool, base, cache, s, nh);
+                             : cutSideColumn(map, h, tool, base, cache, reach, s, nh);
       if (!ok) return FastCut::kOverhang;
       if (!(nh == h)) s.changes.push_back({iu, iv, nh});
     }

@@ -76,6 +76,18 @@ bool strictlyInside(std::span<const Span> tool, double x) {
 
 double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k,
                             std::span<const Span> tool, std::vector<Span>& pieces) {
+  // The usual case, a crossing in the tool's box that no tool interval reaches
+  // (behind the tool, beside it, or by less than kToolSlack): the answer below
+  // without building pieces.
+  if (o0 == n0 && o1 == n1 && o0 != o1 && (o0 ? k <= oc : oc <= k + 1)) {
+    const double lo = o0 ? double(k) : oc, hi = o0 ? oc : double(k + 1);  // the solid part
+    bool reached = false;
+    for (const Span& t : tool)
+      reached = reached || (t.lo < hi - kToolSlack && t.hi > lo + kToolSlack);
+    if (!reached)
+      return o0 ? std::clamp(oc, double(k), nextDown(k + 1))
+                : std::clamp(oc, nextUp(k), double(k + 1));
+  }
   Span before{};
   bool any = true;
   if (std::isnan(oc)) oc = k + 0.5;

@@ -24,6 +24,13 @@ void subtractOpen(std::span<const Span> segments, std::span<const Span> tool,
 void segmentsFromSamples(int first, std::span<const std::uint8_t> solid,
                          std::span<const double> crossing, std::vector<Span>& out);
 
+// A tool interval that reaches less than this (grid units) into a line's solid
+// leaves it as it was: the same surface computed from two sweeps (a step's end
+// pose and the next step's start) differs in the last bits, and a cut must not
+// move a crossing by that much in one cell and not in its neighbour (Stock::cut
+// with a fresh region looks at fewer lines than the tool's box holds).
+inline constexpr double kToolSlack = 1e-9;
+
 // Whether x lies strictly inside one of the open tool intervals (sorted, disjoint).
 bool strictlyInside(std::span<const Span> tool, double x);
 

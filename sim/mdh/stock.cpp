@@ -80,7 +80,8 @@ Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(o
 
 Stock::~Stock() = default;
 
-CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirection) {
+CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirection,
+                     const geom::FreshRegion* fresh) {
   ++step_;
   // A missing or broken tool axis only weakens the direction guesses and CTD.
   glm::dvec3 tool_direction = toolDirection;
@@ -90,7 +91,7 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
   CutResult result;
   IntervalCache cache(grid_, solid, lines_.get());
   if (cache.touched().empty()) return result;
-  CutCounters step = cutBricks(cache, tool_direction);
+  CutCounters step = cutBricks(cache, tool_direction, fresh);
   // Vertices forced cells dropped are cut out of every other cell holding
   // them (which may force more): neighbours keep one state per vertex.
   for (std::vector<std::array<int, 3>> dropped; !step.dropped.empty();) {
@@ -98,7 +99,7 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
     step.dropped.clear();
     const VertexDrops drops(grid_, dropped);
     IntervalCache dropCache(grid_, drops);
-    step.add(cutBricks(dropCache, tool_direction));
+    step.add(cutBricks(dropCache, tool_direction, nullptr));
   }
   totals_.add(step);
   const double h3 = grid_.h * grid_.h * grid_.h;
@@ -110,9 +111,33 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
   return result;
 }
 
-CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direction) {
+GridBox Stock::freshReach(const GridBox& box, const geom::FreshRegion* fresh) const {
+  if (fresh == nullptr) return box;
+  geom::Aabb mm;
+  for (int a = 0; a < 3; ++a) {
+    mm.lo[a] = grid_.toMm(a, box.lo[a]);
+    mm.hi[a] = grid_.toMm(a, box.hi[a]);
+  }
+  const geom::Aabb c = fresh->clip(mm);
+  GridBox r;
+  for (int a = 0; a < 3; ++a) {
+    if (!(c.lo[a] <= c.hi[a])) return GridBox{{1, 1, 1}, {0, 0, 0}};
+    // Outwards, and a little more for the intervals' snapping (1e-9): a point of
+    // the region inside a grid edge reaches both of its ends.
+    constexpr double kSlack = 1e-6;
+    r.lo[a] = static_cast<int>(std::clamp(std::floor(grid_.toGrid(a, c.lo[a]) - kSlack),
+                                          double(box.lo[a]), double(box.hi[a])));
+    r.hi[a] = static_cast<int>(std::clamp(std::ceil(grid_.toGrid(a, c.hi[a]) + kSlack),
+                                          double(box.lo[a]), double(box.hi[a])));
+  }
+  return r;
+}
+
+CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direction,
+                             const geom::FreshRegion* fresh) {
   const GridBox& t = cache.touched();
   std::vector<int> items;
+  std::vector<GridBox> reach;
   std::array<int, 3> first{}, last{};
   for (int a = 0; a < 3; ++a) {
     first[a] = std::max(0, (t.lo[a] - 1) / brickSize_[a]);
@@ -120,11 +145,18 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
   }
   for (int z = first[2]; z <= last[2]; ++z)
     for (int y = first[1]; y <= last[1]; ++y)
-      for (int x = first[0]; x <= last[0]; ++x) items.push_back(brickIndex({x, y, z}));
+      for (int x = first[0]; x <= last[0]; ++x) {
+        const int i = brickIndex({x, y, z});
+        const GridBox r = freshReach(roots_[i].box.intersect(t), fresh);
+        if (r.empty()) continue;  // nothing there the earlier cuts left
+        items.push_back(i);
+        reach.push_back(r);
+      }
   std::vector<CutCounters> counters(items.size());
   const std::function<void(std::size_t)> work = [&](std::size_t i) {
     const CutContext ctx{grid_,
                          cache,
+                         reach[i],
                          options_.ruleset,
                          options_.three_way,
                          tool_direction,

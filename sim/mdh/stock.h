@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sim/geometry/fresh_region.h"
 #include "sim/geometry/line_solid.h"
 #include "sim/mdh/cell.h"
 #include "sim/mdh/cut_counters.h"
@@ -79,7 +80,12 @@ class Stock {
   std::unique_ptr<Stock> clone() const;
 
   // Removes the solid; tool_direction points from the tool tip to the spindle.
-  CutResult cut(const geom::LineSolid& solid, const glm::dvec3& tool_direction);
+  // `fresh`, when given, holds every point of the solid that an earlier cut has not
+  // removed (geom::freshRegion: the previous step ended where this one starts):
+  // bricks and grid lines outside it are not looked at. The result is the same to
+  // the bit (line_segments.h, kToolSlack).
+  CutResult cut(const geom::LineSolid& solid, const glm::dvec3& tool_direction,
+                const geom::FreshRegion* fresh = nullptr);
   void setToolRadius(double mm) { toolRadius_ = mm; }
 
   Overlap probe(const geom::LineSolid& solid, double tolerance = 0.0) const;
@@ -108,7 +114,11 @@ class Stock {
   Stock(const Stock& other, CloneTag);
   const Cell* leafAt(const glm::dvec3& g) const;
   // One pass of a step over the bricks the cache reaches, on the workers.
-  CutCounters cutBricks(IntervalCache& cache, const glm::dvec3& toolDirection);
+  CutCounters cutBricks(IntervalCache& cache, const glm::dvec3& toolDirection,
+                        const geom::FreshRegion* fresh);
+  // The vertices of `box` a change inside `fresh` can move (crossings on edges
+  // with an end in it included): `box` itself without a region.
+  GridBox freshReach(const GridBox& box, const geom::FreshRegion* fresh) const;
   // Solid segments (grid units, merged across cells) of one grid line.
   void gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const;
 

@@ -25,12 +25,6 @@ void ThreeMap::straddle(double h1, double h2, int& first, int& count) const {
   straddleCounts(solidCount(h1), solidCount(h2), first, count);
 }
 
-void ThreeMap::straddleCounts(int f1, int f2, int& first, int& count) const {
-  count = std::abs(f1 - f2);
-  first = dir_.sign > 0 ? box_.lo[dir_.axis] + std::min(f1, f2)
-                        : box_.hi[dir_.axis] - std::max(f1, f2) + 1;
-}
-
 double ThreeMap::interpolatedCrossing(double h0, double h1, int edgeStart, int level) const {
   const double lo = box_.lo[dir_.axis] - 1.0;
   const double hi = box_.hi[dir_.axis] + 1.0;

@@ -66,7 +66,11 @@ class ThreeMap {
   // The grid levels where columns h1 and h2 differ: first, first+1, ... (count).
   void straddle(double h1, double h2, int& first, int& count) const;
   // The same from the two columns' solid counts (a caller that has them already).
-  void straddleCounts(int f1, int f2, int& first, int& count) const;
+  void straddleCounts(int f1, int f2, int& first, int& count) const {
+    count = f1 > f2 ? f1 - f2 : f2 - f1;
+    first = dir_.sign > 0 ? box_.lo[dir_.axis] + std::min(f1, f2)
+                          : box_.hi[dir_.axis] - std::max(f1, f2) + 1;
+  }
   // Solid length of a column in grid units.
   double columnLength(double h) const {
     const double lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
