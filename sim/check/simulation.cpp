@@ -47,6 +47,9 @@ mdh::StockOptions stockOptions(const SimulationOptions& o) {
   s.ruleset = o.ruleset;
   s.seed = o.seed;
   s.threads = o.threads;
+  // Per-tool removal comes from the stock's volume at tool changes (toolRemoval),
+  // so the steps need not integrate their volume change.
+  s.step_volumes = false;
   return s;
 }
 
@@ -92,6 +95,7 @@ Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>
   contact_tolerance_ =
       options_.contact_tolerance >= 0.0 ? options_.contact_tolerance : 0.5 / options_.density;
   stats_.stock_volume_mm3 = stock_->volume();
+  removal_start_ = stats_.stock_volume_mm3;
 }
 
 Simulation::Simulation(const Simulation& from, ForkTag)
@@ -105,6 +109,7 @@ Simulation::Simulation(const Simulation& from, ForkTag)
       episodes_(from.episodes_),
       started_(Clock::now()) {
   stats_.stock_volume_mm3 = stock_->volume();
+  removal_start_ = stats_.stock_volume_mm3;
 }
 
 Simulation::~Simulation() = default;
@@ -336,14 +341,15 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
   const auto fresh = fromLastCut ? geom::freshRegion(step.parts.cutter, a, step.b.pose)
                                  : std::optional<geom::FreshRegion>();
   cut_end_.reset();
+  if (m.tool != removal_tool_) closeToolRemoval(m.tool);
   const mdh::CutResult r = stock_->cut(step.cutter, dir, fresh ? &*fresh : nullptr);
   if (a.axis == step.b.pose.axis) {
     cut_end_ = step.b.pose;
     cut_end_part_ = &step.parts.cutter;
   }
-  if (r.removed_volume > 0.0) {
+  if (r.touched) {
     removed = true;
-    toolUse(stats_, m.tool).removed_volume_mm3 += r.removed_volume;
+    removal_touched_ = true;
   }
   if (r.overhang_events > 0) {
     overhang_.events += r.overhang_events;
@@ -442,12 +448,24 @@ void Simulation::fixtureContacts(const Step& step) {
   }
 }
 
+void Simulation::closeToolRemoval(int next) {
+  if (removal_touched_) {
+    const double v = stock_->volume();
+    toolUse(stats_, removal_tool_).removed_volume_mm3 += removal_start_ - v;
+    removal_start_ = v;
+  }
+  removal_tool_ = next;
+  removal_touched_ = false;
+}
+
 Report Simulation::snapshot(std::int64_t blocks) const {
   Report report;
   RunStats stats = stats_;
   stats.blocks = blocks;
   stats.final_volume_mm3 = stock_->volume();
   stats.removed_volume_mm3 = stats.stock_volume_mm3 - stats.final_volume_mm3;
+  if (removal_touched_)
+    toolUse(stats, removal_tool_).removed_volume_mm3 += removal_start_ - stats.final_volume_mm3;
   report.mdh = stock_->stats();
   OverhangStats overhang = overhang_;
   const auto& d = report.mdh.directions;

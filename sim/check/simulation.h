@@ -124,6 +124,8 @@ class Simulation final : public gcode::MotionSink {
   void runStep(const gcode::Motion& m, const kin::JointPath& path, const ToolParts* parts,
                const StepPose& a, const StepPose& b, bool& removed);
   void cutterStep(const Step& step, bool& removed);
+  // Books the removal of the tool that cut until now (if it did) and starts `next`'s.
+  void closeToolRemoval(int next);
   void stockContacts(const Step& step);
   void fixtureContacts(const Step& step);
   Collision entry(const Step& step, CollisionType type, double f) const;
@@ -150,6 +152,11 @@ class Simulation final : public gcode::MotionSink {
   // stock where it reaches beyond that pose (geom::freshRegion). Not copied by fork().
   std::optional<geom::ToolPose> cut_end_;
   const geom::ToolPart* cut_end_part_ = nullptr;
+  // Each tool's removed volume is the stock's volume when it started cutting less
+  // its volume when the next one did (or now): the steps keep no volume deltas.
+  int removal_tool_ = -1;
+  bool removal_touched_ = false;  // removal_tool_ has changed the stock
+  double removal_start_ = 0.0;    // mm^3
 
   Episodes episodes_;
   RunStats stats_;

@@ -3,6 +3,7 @@
 // (a heightmap); inner nodes hold a grid-aligned split plane and two children
 // that share the plane's vertices.
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "sim/mdh/grid.h"
@@ -12,11 +13,13 @@ namespace mdhd::mdh {
 
 enum class CellState : std::uint8_t { kEmpty, kSolid, kPartial, kInner };
 
+inline constexpr double kStaleVolume = std::numeric_limits<double>::quiet_NaN();
+
 struct Cell {
   GridBox box;
   CellState state = CellState::kSolid;
   std::uint64_t id = 0;  // stable identity: the Random-Selection rule's key
-  double volume = 0.0;   // grid units^3
+  double volume = 0.0;   // grid units^3; kStaleVolume when not kept (StockOptions::step_volumes)
   int splitAxis = -1;
   int splitAt = 0;
   std::unique_ptr<ThreeMap> map;

@@ -52,10 +52,13 @@ void normalize(Cell& cell) {
 // The common case: the cell's own direction still holds the cut.
 bool fastCutCell(Cell& cell, const CutContext& ctx) {
   double delta = 0.0;
-  const FastCut r = fastCut(*cell.map, ctx.cache, ctx.reach, delta);
+  const FastCut r = fastCut(*cell.map, ctx.cache, ctx.reach, ctx.volumes ? &delta : nullptr);
   if (r == FastCut::kOverhang) return false;
   if (r == FastCut::kDone) {
-    setVolume(cell, cell.volume + delta, ctx);
+    if (ctx.volumes)
+      setVolume(cell, cell.volume + delta, ctx);
+    else
+      cell.volume = kStaleVolume;
     ctx.counters.touched = true;
   }
   return true;
@@ -263,7 +266,8 @@ void checkMap(const Cell& cell) {
       const bool empty = m.direction().sign > 0 ? h == -kInf : h == kInf;
       if (!empty && !(h >= lo && h <= hi)) fail(cell, "parent height outside the cell");
     }
-  if (std::abs(m.volume() - cell.volume) > 1e-6 * (1.0 + cell.boxVolume()))
+  if (!std::isnan(cell.volume) &&
+      std::abs(m.volume() - cell.volume) > 1e-6 * (1.0 + cell.boxVolume()))
     fail(cell, "cached volume differs from the heightmap's");
   if (!m.threeWay()) return;
   for (int family = 0; family < 2; ++family)

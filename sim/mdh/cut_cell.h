@@ -23,6 +23,7 @@ struct CutContext {
   // Where the cut can change anything: the cache's box, or less (Stock::cut's fresh region).
   GridBox reach;
   const std::vector<Rule>& rules;
+  bool volumes = true;  // keep cells' volumes (and counters.removed) up to date
   bool threeWay = true;
   glm::dvec3 toolDirection{0.0, 0.0, 1.0};
   double toolRadius = 0.0;  // grid units

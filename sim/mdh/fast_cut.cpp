@@ -133,9 +133,9 @@ int countAt(const ThreeMap& m, const Scratch& s, int family, int r, int e) {
 // Rebuilds one row of embedded heights; `heights` are the row's new parent
 // heights, `changed` marks the columns that moved. Edges in [e0, e1) lie in
 // the tool's box: their crossings can move even when neither column changes.
-// Adds the change of the row's edge terms of the volume to `delta`.
+// Adds the change of the row's edge terms of the volume to `delta` (if not null).
 void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCache& cache,
-                Scratch& s, double& delta) {
+                Scratch& s, double* delta) {
   const int a = m.axis();
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
@@ -171,9 +171,9 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
       }
       dst.push_back(value);
     }
-    if (moved && weight > 0.0)
-      delta += weight * (m.edgeIntegral(nh0, nh1, box.lo[x] + e, dst.data() + start) -
-                         m.edgeIntegral(oh0, oh1, box.lo[x] + e, src.data() + pos));
+    if (moved && weight > 0.0 && delta != nullptr)
+      *delta += weight * (m.edgeIntegral(nh0, nh1, box.lo[x] + e, dst.data() + start) -
+                          m.edgeIntegral(oh0, oh1, box.lo[x] + e, src.data() + pos));
     pos += ocount;
   }
   // Reuse the row's storage unless it is too small or far too large (memory is
@@ -186,9 +186,9 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
 
 // A row without changed columns keeps its layout: only the crossings on
 // edges [e0, e1) the tool's lines reach move, in place. True if one moved;
-// the change of the row's edge terms of the volume is added to `delta`.
+// the change of the row's edge terms of the volume is added to `delta` (if not null).
 bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCache& cache,
-                      Scratch& s, double& delta) {
+                      Scratch& s, double* delta) {
   const int a = m.axis();
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
@@ -208,7 +208,7 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
       continue;
     }
     double* c = row.data() + pos;
-    s.oldCrossings.assign(c, c + count);
+    if (delta != nullptr) s.oldCrossings.assign(c, c + count);
     bool edgeMoved = false;
     const bool s0 = m.solidAt(h0, first), s1 = m.solidAt(h1, first);  // alike on every level
     for (int i = 0; i < count; ++i) {
@@ -221,9 +221,9 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
         edgeMoved = true;
       }
     }
-    if (edgeMoved && weight > 0.0)
-      delta += weight * (m.edgeIntegral(h0, h1, box.lo[x] + e, c) -
-                         m.edgeIntegral(h0, h1, box.lo[x] + e, s.oldCrossings.data()));
+    if (edgeMoved && weight > 0.0 && delta != nullptr)
+      *delta += weight * (m.edgeIntegral(h0, h1, box.lo[x] + e, c) -
+                          m.edgeIntegral(h0, h1, box.lo[x] + e, s.oldCrossings.data()));
     moved = moved || edgeMoved;
     pos += count;
   }
@@ -247,9 +247,9 @@ void groupByRow(const ThreeMap& m, int family, Scratch& s) {
 }  // namespace
 
 FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                double& volumeDelta) {
+                double* volumeDelta) {
   thread_local Scratch s;
-  volumeDelta = 0.0;
+  if (volumeDelta != nullptr) *volumeDelta = 0.0;
   const GridBox region = map.box().intersect(reach);
   if (region.empty()) return FastCut::kUnchanged;
   const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
@@ -259,16 +259,17 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   const double bottom = box.lo[a], top = box.hi[a];
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
     for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
-      const auto tool = cache.line(a, cu, cv);
-      if (tool.empty() && a == 2) continue;
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
       const double h = map.height(iu, iv);
+      // An empty column of a z map has nothing to lose: no need to ask for its line.
+      if (a == 2 && map.solidCount(h) == 0) continue;
+      const auto tool = cache.line(a, cu, cv);
+      if (tool.empty() && a == 2) continue;
       // In a z map, most columns under the tool are not reached below their
       // top (behind the tool, above the part): they keep their height, as
       // cutZColumn would find. (Side maps take their vertices from z lines.)
-      if (a == 2 &&
-          (map.solidCount(h) == 0 || (up ? tool.front().lo >= std::min(h, top) - kToolSlack
-                                         : tool.back().hi <= std::max(h, bottom) + kToolSlack)))
+      if (a == 2 && (up ? tool.front().lo >= std::min(h, top) - kToolSlack
+                        : tool.back().hi <= std::max(h, bottom) + kToolSlack))
         continue;
       double nh = 0.0;
       std::array<int, 3> base{};
@@ -283,7 +284,8 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   // volume() is a sum of edge terms (1/2 per square holding the edge) minus
   // column terms (1/4 per square holding the column): the change is that of
   // the terms of the edges and columns that moved.
-  double delta = 0.0;
+  double delta = 0.0, edgeDelta = 0.0;
+  double* edges = volumeDelta != nullptr ? &edgeDelta : nullptr;
   for (const ColumnChange& c : s.changes)
     delta -= 0.25 * map.squaresAtColumn(c.iu, c.iv) *
              (map.columnLength(c.height) - map.columnLength(map.height(c.iu, c.iv)));
@@ -302,7 +304,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
         if (begin == end) {
           const int ry = box.lo[y] + r;
           if (ry >= region.lo[y] && ry <= region.hi[y])
-            moved |= moveRowCrossings(map, family, r, e0, e1, cache, s, volumeDelta);
+            moved |= moveRowCrossings(map, family, r, e0, e1, cache, s, edges);
           continue;
         }
         const int n = map.edgesInRow(family) + 1;
@@ -320,7 +322,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
           s.newCounts[e] = map.solidCount(c.height);
           s.changed[e] = 1;
         }
-        rebuildRow(map, family, r, e0, e1, cache, s, volumeDelta);
+        rebuildRow(map, family, r, e0, e1, cache, s, edges);
       }
     }
   } else {
@@ -329,12 +331,9 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
       delta += 0.5 * map.squaresAtColumn(c.iu, c.iv) *
                (map.columnLength(c.height) - map.columnLength(map.height(c.iu, c.iv)));
   }
-  if (!moved) {
-    volumeDelta = 0.0;
-    return FastCut::kUnchanged;
-  }
+  if (!moved) return FastCut::kUnchanged;
   for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
-  volumeDelta += delta;
+  if (volumeDelta != nullptr) *volumeDelta = edgeDelta + delta;
   return FastCut::kDone;
 }
 

@@ -12,10 +12,11 @@ namespace mdhd::mdh {
 
 enum class FastCut { kUnchanged, kDone, kOverhang };
 
-// On kDone the map is updated and volumeDelta (grid units^3) is its change;
-// on kOverhang the map is untouched. `reach` (inside cache.touched()): the
-// vertices the cut can change, and the edges between them.
+// On kDone the map is updated and *volumeDelta (grid units^3, unless null:
+// the edge integrals are then skipped) is its change; on kOverhang the map is
+// untouched. `reach` (inside cache.touched()): the vertices the cut can
+// change, and the edges between them.
 FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                double& volumeDelta);
+                double* volumeDelta);
 
 }  // namespace mdhd::mdh

@@ -103,7 +103,7 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
   }
   totals_.add(step);
   const double h3 = grid_.h * grid_.h * grid_.h;
-  result.removed_volume = step.removed * h3;
+  result.removed_volume = options_.step_volumes ? step.removed * h3 : 0.0;
   result.touched = step.touched;
   result.overhang_events = step.overhangEvents;
   result.overhang = step.overhangEvents > 0;
@@ -158,6 +158,7 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
                          cache,
                          reach[i],
                          options_.ruleset,
+                         options_.step_volumes,
                          options_.three_way,
                          tool_direction,
                          toolRadius_ / grid_.h,

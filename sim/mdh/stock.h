@@ -32,10 +32,14 @@ struct StockOptions {
   int threads = 0;                // 0: hardware concurrency
   int brick = 32;                 // pre-split into bricks of this many grid cubes; 0: one root cell
   double tool_radius_hint = 0.0;  // mm, FEFS's threshold until setToolRadius
+  // CutResult::removed_volume of every step. Off, a cut skips the edge integrals
+  // of the volume change (a tenth of a 3-axis step) and reports 0; volume() is
+  // exact either way (it integrates the maps, not the cells' cached volumes).
+  bool step_volumes = true;
 };
 
 struct CutResult {
-  double removed_volume = 0.0;  // mm^3, this step
+  double removed_volume = 0.0;  // mm^3, this step (0 unless StockOptions::step_volumes)
   bool touched = false;         // any material changed
   bool overhang = false;        // some cell needed a new direction or a split
   std::int64_t overhang_events = 0;

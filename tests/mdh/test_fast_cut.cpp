@@ -55,7 +55,7 @@ void runRandomCuts(Direction dir, bool threeWay, std::uint64_t seed) {
     const IntervalCache cache(grid, *tool);
     const ThreeMap before = fast;
     double delta = 0.0;
-    const FastCut result = fastCut(fast, cache, cache.touched(), delta);
+    const FastCut result = fastCut(fast, cache, cache.touched(), &delta);
     if (result == FastCut::kOverhang) {
       ++overhangs;
       expectSameMap(fast, before);
