@@ -20,8 +20,9 @@ struct CheckControls {
   const std::atomic<bool>* cancel = nullptr;  // raise to stop within a step
   // Called with the final stock of a run that completed (meshing).
   std::function<void(const mdh::Stock&)> finished;
-  // Threads cutting the stock. Results are bit-identical for any count; the command
-  // line uses the machine's cores, the service 1 (it runs one job per core already).
+  // Threads cutting the stock and meshing it. Results are bit-identical for any count;
+  // the command line uses the machine's cores, the service 1 (it runs one job per core
+  // already).
   int threads = 1;
 };
 

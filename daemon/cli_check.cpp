@@ -178,9 +178,7 @@ int runCheck(const Args& args, std::ostream& out, std::ostream& err) {
     std::string meshError;
     if (!a.mesh.empty()) {
       controls.finished = [&](const mdh::Stock& stock) {
-        // One meshing thread: parallel meshing buffers runs of triangles to keep
-        // their order, which cost 40-450 MB more at density 10 on the dome.
-        meshError = writeStockStl(stock, a.mesh);
+        meshError = writeStockStl(stock, a.mesh, controls.threads);
       };
     }
     report = runCheckJob(loaded, controls);

@@ -116,7 +116,7 @@ JobOutcome runServiceJob(const std::string& jobJson, const std::filesystem::path
   const double loadMs = std::chrono::duration<double, std::milli>(Clock::now() - started).count();
   JobOutcome out;
   controls.finished = [&](const mdh::Stock& stock) {
-    out.mesh_error = cli::writeStockStl(stock, meshPath);
+    out.mesh_error = cli::writeStockStl(stock, meshPath, controls.threads);
     out.mesh = out.mesh_error.empty();
   };
   check::Report report = cli::runCheckJob(loaded, controls);

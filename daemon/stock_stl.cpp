@@ -21,7 +21,7 @@ void syncPath(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path) {
+std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path, int threads) {
   std::filesystem::path partial = path;
   partial += ".partial";
   try {
@@ -29,7 +29,9 @@ std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& 
       std::ofstream file(partial, std::ios::binary | std::ios::trunc);
       if (!file) return "cannot write " + partial.string();
       protocol::StlWriter stl(file, "mdhd check: final stock (mm, workpiece frame)");
-      mesh::meshStock(stock, stl);
+      mesh::MeshOptions options;
+      options.threads = threads;
+      mesh::meshStock(stock, stl, options);
       stl.finish();
     }
     syncPath(partial);

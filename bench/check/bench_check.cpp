@@ -7,8 +7,9 @@
 //
 //   bench_check [--densities 5,10,20] [--no-freecad] [--smoke] [--threads N] [--only 3|5]
 //               [--passes K]
-// --threads: stock cutting threads (default 1); --only: just the 3-axis or the 5-axis dome;
-// --passes: only the first K zigzag passes (a slice for profiling; no FreeCAD run).
+// --threads: threads cutting and meshing the stock (default 1); --only: just the 3-axis
+// or the 5-axis dome; --passes: only the first K zigzag passes (a slice for profiling; no
+// FreeCAD run).
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -106,7 +107,9 @@ nlohmann::json simulate(const Case& c, double density, int threads) {
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   ErrorSink errors(c.cx, c.cy);
   const Clock::time_point t1 = Clock::now();
-  mesh::meshStock(sim.stock(), errors);  // one thread, as mdhd check meshes
+  mesh::MeshOptions meshOptions;
+  meshOptions.threads = threads;  // as mdhd check meshes
+  mesh::meshStock(sim.stock(), errors, meshOptions);
   const double meshWall = std::chrono::duration<double>(Clock::now() - t1).count();
   std::string first;
   if (!r.collisions.empty()) {

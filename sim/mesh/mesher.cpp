@@ -349,6 +349,24 @@ bool overlaps(const LeafInfo& l, const StockView& view, const geom::Aabb& region
   return true;
 }
 
+// A leaf's meshing work, about its triangles (so runs of equal work hold about
+// equal triangles; measured on the example jobs' leaves): a partial leaf 2 per
+// column (1.2 on average, up to 3.9 on a wall) and 2 per grid square on the
+// stock's boundary box; a uniform leaf a fan round the rim of each boundary face
+// and a scan of its top faces (a lookup per vertex, far cheaper).
+std::int64_t workOf(const LeafInfo& l, const GridPoint& n) {
+  const bool partial = l.kind == LeafKind::kPartial;
+  std::int64_t work = 1;
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    const std::int64_t du = l.hi[u] - l.lo[u], dv = l.hi[v] - l.lo[v];
+    const int faces = (l.lo[a] == 0 ? 1 : 0) + (l.hi[a] == n[a] ? 1 : 0);
+    work += faces * (partial ? 2 * du * dv : 2 * (du + dv));
+    work += partial ? (a == l.axis ? 2 * du * dv : 0) : du * dv / 16;
+  }
+  return work;
+}
+
 }  // namespace
 
 MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& options) {
@@ -371,9 +389,17 @@ MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& op
       mesher.exterior(i);
     }
   };
-  if (options.threads > 1 && leaves.size() > 1)
-    meshInParallel(leaves, options.threads, sink, stats, meshRun);
-  else
+  if (options.threads > 1 && leaves.size() > 1) {
+    std::vector<std::int64_t> work;
+    work.reserve(leaves.size());
+    for (int i : leaves) work.push_back(workOf(view.leaf(i), view.cubes()));
+    ParallelRuns runs;
+    runs.threads = options.threads;
+    runs.window = options.threads * std::max(1, options.runsPerThread);
+    // Leaves differ a lot in cost: several runs per thread even the load out.
+    runs.ends = cutRuns(work, options.runWork, 8 * static_cast<std::size_t>(options.threads));
+    meshInParallel(leaves, runs, sink, stats, meshRun);
+  } else
     meshRun(leaves, sink, stats);
   return stats;
 }

@@ -26,9 +26,16 @@ struct MeshOptions {
   // Only the cells overlapping this box (mm, W), for viewers. The result is
   // then open where the region cuts through material.
   std::optional<geom::Aabb> region;
-  // Threads meshing runs of leaves; the sink still gets every triangle from
-  // the calling thread, in the same order and with the same keys as with one.
+  // Threads meshing runs of leaves, the calling thread one of them; the sink
+  // still gets every triangle from the calling thread, in the same order and
+  // with the same keys as with one.
   int threads = 1;
+  // With threads > 1, what bounds the triangles held at once: runs of at most
+  // about `runWork` (estimated surface cubes and boundary squares, roughly
+  // triangles), of which `runsPerThread` per thread are meshed or buffered at
+  // a time. Tests shrink them; the output does not depend on them.
+  std::int64_t runWork = 2048;
+  int runsPerThread = 2;
 };
 
 struct MeshStats {
