@@ -1,9 +1,12 @@
 // Meshing on several threads gives the sink exactly what one thread gives:
 // the same triangles in the same order, the same vertex keys (added vertices
 // numbered on), the same statistics.
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <numeric>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -89,52 +92,70 @@ TEST(ParallelMesh, RunsCloseAtTheirWorkOrEarlierForBalance) {
   EXPECT_TRUE(cutRuns({}, 4, 2).empty());
 }
 
-// Each run gives one triangle naming it (and an added vertex numbered from 0).
-// The sink must get them in run order with the added vertices numbered on, and
-// no run may start while `window` runs before it are still short of the sink.
-TEST(ParallelMesh, WindowBoundsTheRunsInFlight) {
-  std::vector<int> leaves(200);
+// Each leaf gives two triangles naming it, each with an added vertex (numbered
+// 0 and 1 by its mesher). The sink must get them in leaf order with the added
+// vertices numbered on (2i, 2i + 1), and no leaf may be started while `window`
+// runs before its run are still short of the sink. With slow workers (a busy
+// machine) the calling thread meshes runs they hold itself.
+TEST(ParallelMesh, WindowAndSlowWorkers) {
+  std::vector<int> leaves(240);
   std::iota(leaves.begin(), leaves.end(), 0);
   ParallelRuns runs;
-  for (std::size_t i = 1; i <= leaves.size(); ++i) runs.ends.push_back(i);
-  for (int threads : {1, 2, 3}) {
-    for (int window : {1, 2, 5}) {
-      runs.threads = threads;
-      runs.window = window;
-      std::atomic<int> started{0};
-      std::atomic<int> worstAhead{0};
-      const MeshRun run = [&](std::span<const int> leaf, MeshSink& out, MeshStats& s) {
-        ++started;
-        MeshVertex a, b, c;
-        a.key = {static_cast<std::uint64_t>(leaf[0]), VertexKind::kCorner};
-        c.key = {0, VertexKind::kInner};
-        out.triangle(a, b, c, false);
-        ++s.triangles;
-        ++s.centreVertices;
-      };
-      struct Check final : MeshSink {
-        std::atomic<int>* started = nullptr;
-        std::atomic<int>* worstAhead = nullptr;
-        std::vector<std::uint64_t> runs, inner;
-        void triangle(const MeshVertex& a, const MeshVertex&, const MeshVertex& c, bool) override {
-          runs.push_back(a.key.where);
-          inner.push_back(c.key.where);
-          const int ahead = *started - static_cast<int>(a.key.where) - 1;
-          if (ahead > *worstAhead) *worstAhead = ahead;
+  for (std::size_t i = 3; i <= leaves.size(); i += 3) runs.ends.push_back(i);  // 3 leaves each
+  const auto caller = std::this_thread::get_id();
+  for (bool slowWorkers : {false, true}) {
+    for (int threads : {1, 2, 3}) {
+      for (int window : {1, 2, 5}) {
+        runs.threads = threads;
+        runs.window = window;
+        std::atomic<int> furthest{-1}, calls{0};
+        const MeshRun run = [&](std::span<const int> leaf, MeshSink& out, MeshStats& s) {
+          ++calls;
+          for (int i : leaf) {
+            int f = furthest;
+            while (i > f && !furthest.compare_exchange_weak(f, i)) {
+            }
+            // Every leaf takes a while, so that workers start runs at all.
+            const bool slow = slowWorkers && std::this_thread::get_id() != caller;
+            std::this_thread::sleep_for(std::chrono::microseconds(slow ? 1000 : 20));
+            MeshVertex a, b, c;
+            a.key = {static_cast<std::uint64_t>(i), VertexKind::kCorner};
+            for (std::uint64_t k : {0, 1}) {
+              c.key = {k + static_cast<std::uint64_t>(s.centreVertices), VertexKind::kInner};
+              out.triangle(a, b, c, false);
+            }
+            s.triangles += 2;
+            s.centreVertices += 2;
+          }
+        };
+        struct Check final : MeshSink {
+          std::atomic<int>* furthest = nullptr;
+          std::vector<std::uint64_t> leaf, inner;
+          int worstAhead = 0;  // runs started beyond the one at the sink
+          void triangle(const MeshVertex& a, const MeshVertex&, const MeshVertex& c,
+                        bool) override {
+            leaf.push_back(a.key.where);
+            inner.push_back(c.key.where);
+            worstAhead = std::max(worstAhead, *furthest / 3 - static_cast<int>(a.key.where / 3));
+          }
+        } sink;
+        sink.furthest = &furthest;
+        MeshStats stats;
+        meshInParallel(leaves, runs, sink, stats, run);
+        ASSERT_EQ(sink.leaf.size(), 2 * leaves.size());
+        for (std::size_t i = 0; i < sink.leaf.size(); ++i) {
+          ASSERT_EQ(sink.leaf[i], i / 2) << i;
+          ASSERT_EQ(sink.inner[i], i) << i;
         }
-      } sink;
-      sink.started = &started;
-      sink.worstAhead = &worstAhead;
-      MeshStats stats;
-      meshInParallel(leaves, runs, sink, stats, run);
-      ASSERT_EQ(sink.runs.size(), leaves.size());
-      for (std::size_t i = 0; i < leaves.size(); ++i) {
-        EXPECT_EQ(sink.runs[i], i);
-        EXPECT_EQ(sink.inner[i], i);
+        EXPECT_EQ(stats.triangles, 480);
+        EXPECT_EQ(stats.centreVertices, 480);
+        EXPECT_LE(sink.worstAhead, window - 1) << threads << " threads";
+        // Slow workers: the calling thread re-meshed leaves a worker held (with a
+        // window of 1 a worker rarely gets a run at all).
+        if (slowWorkers && threads > 1 && window > 1) {
+          EXPECT_GT(calls.load(), 240) << threads << " threads";
+        }
       }
-      EXPECT_EQ(stats.triangles, 200);
-      // Runs started beyond the one at the sink: at most window - 1.
-      EXPECT_LE(worstAhead.load(), window - 1) << threads << " threads";
     }
   }
 }
