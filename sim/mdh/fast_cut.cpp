@@ -37,11 +37,11 @@ struct Scratch {
 class CrossingMemo {
  public:
   double operator()(bool o0, bool o1, double oc, bool n0, bool n1, int k,
-                    std::span<const Span> tool, std::vector<Span>& pieces) {
+                    std::span<const Span> tool) {
     const unsigned states = o0 | o1 << 1 | n0 << 2 | n1 << 3;
     if (tool.data() == tool_ && tool.size() == size_ && oc == oc_ && k == k_ && states == states_)
       return value_;
-    value_ = edgeCrossingAfterCut(o0, o1, oc, n0, n1, k, tool, pieces);
+    value_ = edgeCrossingAfterCut(o0, o1, oc, n0, n1, k, tool);
     tool_ = tool.data(), size_ = tool.size(), oc_ = oc, k_ = k, states_ = states;
     return value_;
   }
@@ -121,7 +121,7 @@ bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
     const int e = up ? count - 1 : n - 1 - count;  // the edge (lo + e, lo + e + 1) crosses
     const bool o0 = s.was[e], o1 = s.was[e + 1];
     out = edgeCrossingAfterCut(o0, o1, o0 != o1 ? h : std::nan(""), s.now[e], s.now[e + 1], lo + e,
-                               tool, s.pieces);
+                               tool);
   }
   return true;
 }
@@ -165,7 +165,7 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
         p[a] = k;
         const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
         value = crossing(m.solidAt(oh0, k), m.solidAt(oh1, k), value, m.solidAt(nh0, k),
-                         m.solidAt(nh1, k), box.lo[x] + e, tool, s.pieces);
+                         m.solidAt(nh1, k), box.lo[x] + e, tool);
         // Untouched edges keep their layout: compare with the old crossing.
         moved = moved || !(value == src[pos + i]);
       }
@@ -215,7 +215,7 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
       p[a] = first + i;
       const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
       if (tool.empty()) continue;
-      const double value = crossing(s0, s1, c[i], s0, s1, box.lo[x] + e, tool, s.pieces);
+      const double value = crossing(s0, s1, c[i], s0, s1, box.lo[x] + e, tool);
       if (!(value == c[i])) {
         c[i] = value;
         edgeMoved = true;

@@ -75,10 +75,10 @@ bool strictlyInside(std::span<const Span> tool, double x) {
 }
 
 double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k,
-                            std::span<const Span> tool, std::vector<Span>& pieces) {
+                            std::span<const Span> tool) {
   // The usual case, a crossing in the tool's box that no tool interval reaches
   // (behind the tool, beside it, or by less than kToolSlack): the answer below
-  // without building pieces.
+  // without walking the intervals.
   if (o0 == n0 && o1 == n1 && o0 != o1 && (o0 ? k <= oc : oc <= k + 1)) {
     const double lo = o0 ? double(k) : oc, hi = o0 ? oc : double(k + 1);  // the solid part
     bool reached = false;
@@ -88,29 +88,33 @@ double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k
       return o0 ? std::clamp(oc, double(k), nextDown(k + 1))
                 : std::clamp(oc, nextUp(k), double(k + 1));
   }
-  Span before{};
-  bool any = true;
-  if (std::isnan(oc)) oc = k + 0.5;
-  if (o0 && o1)
-    before = {double(k), double(k + 1)};
-  else if (o0)
-    before = {double(k), oc};
-  else if (o1)
-    before = {oc, double(k + 1)};
-  else
-    any = false;
-  if (any)
-    subtractOpen(std::span<const Span>(&before, 1), tool, pieces);
-  else
-    pieces.clear();
   // The crossing lies in [k, k+1) when k is solid, in (k, k+1] when k+1 is.
   const double lo = n0 ? double(k) : nextUp(k);
   const double hi = n0 ? nextDown(k + 1) : double(k + 1);
-  for (const Span& s : pieces) {
-    if (n0 && !n1 && s.lo <= k) return std::clamp(s.hi, lo, hi);
-    if (!n0 && n1 && s.hi >= k + 1) return std::clamp(s.lo, lo, hi);
+  const double none = n0 ? lo : hi;
+  if (!o0 && !o1) return none;
+  if (std::isnan(oc)) oc = k + 0.5;
+  const Span before = o0 && o1 ? Span{double(k), double(k + 1)}
+                      : o0     ? Span{double(k), oc}
+                               : Span{oc, double(k + 1)};
+  // subtractOpen(before, tool), piece by piece: the first piece that holds the
+  // solid end is the answer.
+  double at = -1.0;
+  const auto settles = [&](double plo, double phi) {
+    if (n0 && !n1 && plo <= k) return at = std::clamp(phi, lo, hi), true;
+    if (!n0 && n1 && phi >= k + 1) return at = std::clamp(plo, lo, hi), true;
+    return false;
+  };
+  double from = before.lo;
+  std::size_t t = 0;
+  while (t < tool.size() && tool[t].hi <= before.lo) ++t;
+  for (; t < tool.size() && tool[t].lo < before.hi; ++t) {
+    if (tool[t].hi <= from) continue;
+    if (tool[t].lo >= from && settles(from, tool[t].lo)) return at;
+    from = tool[t].hi;
+    if (from > before.hi) return none;  // nothing left after this interval
   }
-  return n0 ? lo : hi;
+  return settles(from, before.hi) ? at : none;
 }
 
 }  // namespace mdhd::mdh

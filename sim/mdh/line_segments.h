@@ -43,8 +43,8 @@ bool strictlyInside(std::span<const Span> tool, double x);
 // disagree with the end states (these may come from another line, a tangency
 // within rounding) the surface is put at the solid end. The result lies in
 // [solid end, empty end): a parent height and an embedded height of the same
-// edge are then the same number. `pieces` is scratch space.
+// edge are then the same number.
 double edgeCrossingAfterCut(bool o0, bool o1, double oc, bool n0, bool n1, int k,
-                            std::span<const Span> tool, std::vector<Span>& pieces);
+                            std::span<const Span> tool);
 
 }  // namespace mdhd::mdh

@@ -98,7 +98,6 @@ void SampleGrid::applyCut(const IntervalCache& cache) {
     if (bool(state_[i] & kSolid) != bool(state_[i] & kWasSolid)) changed_ = true;
   // Crossings, edge by edge in all three families (the same function every
   // cell holding an edge uses).
-  std::vector<Span> pieces;
   for (int x = 0; x < 3; ++x) {
     const int xu = axisU(x), xv = axisV(x);
     const std::size_t sx = stride(x);
@@ -118,7 +117,7 @@ void SampleGrid::applyCut(const IntervalCache& cache) {
             continue;
           }
           if (tool.empty() && o0 == n0 && o1 == n1) continue;
-          const double nc = edgeCrossingAfterCut(o0, o1, c, n0, n1, box_.lo[x] + k, tool, pieces);
+          const double nc = edgeCrossingAfterCut(o0, o1, c, n0, n1, box_.lo[x] + k, tool);
           if (!(nc == c)) changed_ = true;
           c = nc;
         }
