@@ -251,12 +251,14 @@ void Mesher::uniformLeaf(const LeafInfo& l) {
     const int u = (a + 1) % 3, v = (a + 2) % 3;
     GridPoint p{};
     p[a] = l.hi[a];
+    int owner = hint_;  // the face's vertices belong to the neighbours: hint the last one
     for (p[v] = l.lo[v]; p[v] <= l.hi[v] && !layer[a]; ++p[v])
-      for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u])
-        if (view_.solid(p, hint_) != solid) {
+      for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u]) {
+        if (view_.solidWalk(p, owner) != solid) {
           layer[a] = true;
           break;
         }
+      }
   }
   // Only the cube layers under a hi face with a disagreeing vertex can hold surface.
   for (int a = 0; a < 3; ++a) {

@@ -53,6 +53,12 @@ class StockView {
 
   // Solidity of grid vertex p as its owner stores it.
   bool solid(const GridPoint& p, int hint = -1) const { return solidIn(ownerOf(p, hint), p); }
+  // The same for a walk over neighbouring vertices: `owner` is the hint, and is
+  // set to p's owner for the next one.
+  bool solidWalk(const GridPoint& p, int& owner) const {
+    owner = ownerOf(p, owner);
+    return solidIn(owner, p);
+  }
   // The surface crossing on the grid edge from p along `axis` as its owner
   // stores it: an absolute grid coordinate. If the owner has none there
   // (cells disagree about an end), the first of the other leaves around the
