@@ -86,6 +86,14 @@ geom::Tool ballTool() {
   return t;
 }
 
+// CPU seconds of this process so far, all threads.
+double processCpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec +
+         u.ru_stime.tv_usec * 1e-6;
+}
+
 // One run in this process: simulation, then the mesh into the error sink.
 nlohmann::json simulate(const Case& c, double density, int threads) {
   const kin::Kinematics kin(c.machine);
@@ -107,10 +115,12 @@ nlohmann::json simulate(const Case& c, double density, int threads) {
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   ErrorSink errors(c.cx, c.cy);
   const Clock::time_point t1 = Clock::now();
+  const double cpu1 = processCpuSeconds();
   mesh::MeshOptions meshOptions;
   meshOptions.threads = threads;  // as mdhd check meshes
   mesh::meshStock(sim.stock(), errors, meshOptions);
   const double meshWall = std::chrono::duration<double>(Clock::now() - t1).count();
+  const double meshCpu = processCpuSeconds() - cpu1;
   std::string first;
   if (!r.collisions.empty()) {
     const check::Collision& k = r.collisions.front();
@@ -128,6 +138,7 @@ nlohmann::json simulate(const Case& c, double density, int threads) {
           {"final_mm3", r.stats.final_volume_mm3},
           {"collisions", r.collisions.size()},
           {"mesh_s", meshWall},
+          {"mesh_cpu_s", meshCpu},
           {"triangles", errors.triangles()},
           {"overcut_mm", errors.overcut()},
           {"undercut_mm", errors.undercut()},
@@ -297,9 +308,12 @@ int main(int argc, char** argv) {
                   r["overcut_mm"].get<double>(), r["undercut_mm"].get<double>(),
                   r["collisions"].get<int>());
       // Full precision, so runs can be compared bit for bit (threads, code changes).
-      std::printf("  final volume %.17g mm3, leaves %lld, cut %.0f ms, probes %.0f ms\n",
-                  r["final_mm3"].get<double>(), r["leaves"].get<long long>(),
-                  r["cut_ms"].get<double>(), r["probe_ms"].get<double>());
+      std::printf(
+          "  final volume %.17g mm3, leaves %lld, cut %.0f ms, probes %.0f ms, mesh CPU %.3f s, "
+          "%lld triangles\n",
+          r["final_mm3"].get<double>(), r["leaves"].get<long long>(), r["cut_ms"].get<double>(),
+          r["probe_ms"].get<double>(), r["mesh_cpu_s"].get<double>(),
+          r["triangles"].get<long long>());
       if (withFreecad && c.name == "dome 3-axis") {
         const nlohmann::json f = freecad(work, peerGcode, d);
         if (f.contains("error")) {
