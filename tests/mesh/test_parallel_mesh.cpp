@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -103,7 +104,11 @@ TEST(ParallelMesh, WindowAndSlowWorkers) {
   ParallelRuns runs;
   for (std::size_t i = 3; i <= leaves.size(); i += 3) runs.ends.push_back(i);  // 3 leaves each
   const auto caller = std::this_thread::get_id();
-  for (bool slowWorkers : {false, true}) {
+  // Microseconds per leaf on the calling thread and on workers: both quick, slow
+  // workers (the calling thread takes their runs over), both slow (workers also
+  // finish runs the calling thread has begun to take over).
+  for (auto [callerMicros, workerMicros] : {std::pair{20, 20}, {20, 1000}, {300, 300}}) {
+    const bool slowWorkers = workerMicros > 10 * callerMicros;
     for (int threads : {1, 2, 3}) {
       for (int window : {1, 2, 5}) {
         runs.threads = threads;
@@ -116,8 +121,9 @@ TEST(ParallelMesh, WindowAndSlowWorkers) {
             while (i > f && !furthest.compare_exchange_weak(f, i)) {
             }
             // Every leaf takes a while, so that workers start runs at all.
-            const bool slow = slowWorkers && std::this_thread::get_id() != caller;
-            std::this_thread::sleep_for(std::chrono::microseconds(slow ? 1000 : 20));
+            const bool onCaller = std::this_thread::get_id() == caller;
+            std::this_thread::sleep_for(
+                std::chrono::microseconds(onCaller ? callerMicros : workerMicros));
             MeshVertex a, b, c;
             a.key = {static_cast<std::uint64_t>(i), VertexKind::kCorner};
             for (std::uint64_t k : {0, 1}) {
