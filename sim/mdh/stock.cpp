@@ -147,13 +147,23 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
     for (int y = first[1]; y <= last[1]; ++y)
       for (int x = first[0]; x <= last[0]; ++x) {
         const int i = brickIndex({x, y, z});
+        if (roots_[i].state == CellState::kEmpty) continue;
         const GridBox r = freshReach(roots_[i].box.intersect(t), fresh);
         if (r.empty()) continue;  // nothing there the earlier cuts left
         items.push_back(i);
         reach.push_back(r);
       }
+  // Largest reach first, so two threads do not end a step with one big brick left
+  // to one of them (the order is the data's, so the sums below do not depend on
+  // the thread count).
+  std::vector<std::size_t> order(items.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) {
+    return reach[l].pointCount() > reach[r].pointCount();
+  });
   std::vector<CutCounters> counters(items.size());
-  const std::function<void(std::size_t)> work = [&](std::size_t i) {
+  const std::function<void(std::size_t)> work = [&](std::size_t k) {
+    const std::size_t i = order[k];
     const CutContext ctx{grid_,
                          cache,
                          reach[i],
