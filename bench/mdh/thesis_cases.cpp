@@ -125,10 +125,15 @@ std::vector<ThesisCase> thesisCases() {
       {"D1", plate, ball, donut(d25, 2, 2, 1.69, 1.69, zT, zT, 1), fromTable + "one turn"});
   cases.push_back({"D2", plate, ball, donut(d45, 2, 2, 1.69, 1.69, zT, zT, 1),
                    fromTable + "45 degrees instead of 25"});
-  cases.push_back({"DS1", plate, ball, donut(d25, 2, 2, 1.69, 0.9, zT, zT, 3),
-                   fromTable + "spiral in to radius 0.9 over 3 turns"});
-  cases.push_back({"DS2", plate, ball, donut(d45, 2, 2, 1.69, 0.9, zT, zT, 3),
-                   fromTable + "45 degrees, spiral in to radius 0.9 over 3 turns"});
+  // DS: the spiral's pitch is lost with figures 6.4/6.5. Four turns (0.1975 mm,
+  // two thirds of the tool's diameter: cusps 0.037 mm high) put random
+  // selection at 0.87x / 1.05x table 6.2's RS row; 3 turns gave 2.6x / 2.8x,
+  // with cusps 0.078 mm high that need fallback halvings the thesis never had.
+  constexpr double kSpiralTurns = 4;
+  cases.push_back({"DS1", plate, ball, donut(d25, 2, 2, 1.69, 0.9, zT, zT, kSpiralTurns),
+                   fromTable + "spiral in to radius 0.9 over 4 turns (pitch from RS)"});
+  cases.push_back({"DS2", plate, ball, donut(d45, 2, 2, 1.69, 0.9, zT, zT, kSpiralTurns),
+                   fromTable + "45 degrees, spiral in to radius 0.9 over 4 turns"});
   cases.push_back(drillEdge(true));
   cases.push_back(drillEdge(false));
   cases.push_back(drill("NA", 1, {1, 1, std::sqrt(2.0)}, {0.5, 0.5, 0.7},
