@@ -1,6 +1,10 @@
 #pragma once
 // A few threads kept for the life of a stock, so that cutting a step on two
-// cores costs a wake-up instead of a thread start (tens of microseconds).
+// cores costs a wake-up instead of a thread start (tens of microseconds). A
+// helper that has finished spins a few tens of microseconds for the next run
+// before it sleeps, and so does the caller waiting for the helpers: the steps
+// of a program follow each other that closely, and a sleeping thread takes
+// about as long to wake.
 // run() hands out the indices 0..count-1 to the caller and the helpers through
 // one atomic counter and returns when all are done; which thread runs which
 // index does not matter to the callers (they merge results in index order).
@@ -36,15 +40,18 @@ class WorkerPool {
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   std::vector<std::thread> helpers_;
+  // Written by run() before it publishes a new generation (release), read by the
+  // helpers after they see it (acquire).
   const std::function<void(std::size_t)>* task_ = nullptr;
   std::size_t count_ = 0;
   std::atomic<std::size_t> next_{0};
   std::atomic<bool> failed_{false};
-  std::exception_ptr error_;
-  std::uint64_t generation_ = 0;
-  int active_ = 0;  // helpers asked to take part in this run
-  int busy_ = 0;    // of those, still working
-  bool stop_ = false;
+  std::exception_ptr error_;  // under mutex_
+  // The run's number << 8 | how many helpers it asks for (at most 255): one word,
+  // so a helper never pairs one run's number with another run's count.
+  std::atomic<std::uint64_t> generation_{0};
+  std::atomic<int> busy_{0};  // helpers asked for this run and still working
+  std::atomic<bool> stop_{false};
 };
 
 }  // namespace mdhd::mdh

@@ -36,6 +36,21 @@ TEST(WorkerPool, EveryIndexRunsExactlyOnceOnAsManyThreadsAsAsked) {
   }
 }
 
+// Runs that ask for no helper return at once, so the next run can start while a
+// helper is still looking at the last one: it must not take the new run's
+// count of helpers for the old run's (that lost a helper and hung the caller).
+TEST(WorkerPool, BackToBackRunsOfOneAndThreeWorkers) {
+  WorkerPool pool(3);
+  std::atomic<long> total{0};
+  long expected = 0;
+  for (int run = 0; run < 50000; ++run) {
+    const std::size_t n = run % 2 == 0 ? 1 : 4;
+    pool.run(n, run % 2 == 0 ? 1 : 3, [&](std::size_t) { total.fetch_add(1); });
+    expected += static_cast<long>(n);
+  }
+  EXPECT_EQ(total.load(), expected);
+}
+
 TEST(WorkerPool, AnExceptionReachesTheCallerAndThePoolGoesOn) {
   WorkerPool pool(2);
   for (int workers : {1, 2}) {

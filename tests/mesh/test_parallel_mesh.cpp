@@ -39,6 +39,25 @@ void cut(mdh::Stock& stock, std::uint32_t seed) {
   }
 }
 
+// Meshing on 2 and 3 threads with options `o` gives one thread's triangles, keys
+// and statistics.
+void expectSameOnTwoAndThreeThreads(const mdh::Stock& stock, MeshOptions o,
+                                    const TriangleBuffer& one, const MeshStats& s1) {
+  for (int threads : {2, 3}) {
+    TriangleBuffer many;
+    o.threads = threads;
+    const MeshStats s = meshStock(stock, many, o);
+    expectSame(one.tris, many.tris);
+    EXPECT_EQ(s.triangles, s1.triangles);
+    EXPECT_EQ(s.exteriorTriangles, s1.exteriorTriangles);
+    EXPECT_EQ(s.loops, s1.loops);
+    EXPECT_EQ(s.centreVertices, s1.centreVertices);
+    EXPECT_EQ(s.surfaceCubes, s1.surfaceCubes);
+    EXPECT_EQ(s.leaves, s1.leaves);
+    EXPECT_EQ(s.fallbackCrossings, 0);
+  }
+}
+
 TEST(ParallelMesh, SameTrianglesKeysAndStatsAsOneThread) {
   for (bool threeWay : {true, false}) {
     mdh::Stock stock({{0, 0, 0}, {6, 6, 4}}, testing::stockOptions(8, threeWay, 8));
@@ -48,19 +67,7 @@ TEST(ParallelMesh, SameTrianglesKeysAndStatsAsOneThread) {
     const MeshStats s1 = meshStock(stock, one, o);
     EXPECT_GT(s1.leaves, 16);
     EXPECT_GT(s1.triangles, 10000);
-    for (int threads : {2, 3}) {
-      TriangleBuffer many;
-      o.threads = threads;
-      const MeshStats s = meshStock(stock, many, o);
-      expectSame(one.tris, many.tris);
-      EXPECT_EQ(s.triangles, s1.triangles);
-      EXPECT_EQ(s.exteriorTriangles, s1.exteriorTriangles);
-      EXPECT_EQ(s.loops, s1.loops);
-      EXPECT_EQ(s.centreVertices, s1.centreVertices);
-      EXPECT_EQ(s.surfaceCubes, s1.surfaceCubes);
-      EXPECT_EQ(s.leaves, s1.leaves);
-      EXPECT_EQ(s.fallbackCrossings, 0);
-    }
+    expectSameOnTwoAndThreeThreads(stock, o, one, s1);
   }
 }
 
@@ -73,14 +80,7 @@ TEST(ParallelMesh, ManyTinyRunsAndANarrowWindow) {
   const MeshStats s1 = meshStock(stock, one, o);
   o.runWork = 1;
   o.runsPerThread = 1;
-  for (int threads : {2, 3}) {
-    TriangleBuffer many;
-    o.threads = threads;
-    const MeshStats s = meshStock(stock, many, o);
-    expectSame(one.tris, many.tris);
-    EXPECT_EQ(s.centreVertices, s1.centreVertices);
-    EXPECT_EQ(s.leaves, s1.leaves);
-  }
+  expectSameOnTwoAndThreeThreads(stock, o, one, s1);
 }
 
 TEST(ParallelMesh, RunsCloseAtTheirWorkOrEarlierForBalance) {
