@@ -47,7 +47,7 @@ mdh::StockOptions stockOptions(const SimulationOptions& o) {
   s.ruleset = o.ruleset;
   s.seed = o.seed;
   s.threads = o.threads;
-  // Per-tool removal comes from the stock's volume at tool changes (toolRemoval),
+  // Per-tool removal comes from the stock's volume at tool changes (closeToolRemoval),
   // so the steps need not integrate their volume change.
   s.step_volumes = false;
   return s;
