@@ -284,11 +284,17 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   // volume() is a sum of edge terms (1/2 per square holding the edge) minus
   // column terms (1/4 per square holding the column): the change is that of
   // the terms of the edges and columns that moved.
-  double delta = 0.0, edgeDelta = 0.0;
-  double* edges = volumeDelta != nullptr ? &edgeDelta : nullptr;
-  for (const ColumnChange& c : s.changes)
-    delta -= 0.25 * map.squaresAtColumn(c.iu, c.iv) *
-             (map.columnLength(c.height) - map.columnLength(map.height(c.iu, c.iv)));
+  // The column terms' change, `perSquare` for each square holding the column.
+  const auto columnTerms = [&](double perSquare) {
+    double d = 0.0;
+    for (const ColumnChange& c : s.changes)
+      d += perSquare * map.squaresAtColumn(c.iu, c.iv) *
+           (map.columnLength(c.height) - map.columnLength(map.height(c.iu, c.iv)));
+    return d;
+  };
+  const bool volume = volumeDelta != nullptr;
+  double delta = volume ? -columnTerms(0.25) : 0.0, edgeDelta = 0.0;
+  double* edges = volume ? &edgeDelta : nullptr;
   bool moved = !s.changes.empty();
   if (map.threeWay()) {
     s.counts.resize(static_cast<std::size_t>(map.columnsU()) * map.columnsV());
@@ -325,15 +331,12 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
         rebuildRow(map, family, r, e0, e1, cache, s, edges);
       }
     }
-  } else {
-    // A plain heightmap's edge terms are the means of their columns' terms.
-    for (const ColumnChange& c : s.changes)
-      delta += 0.5 * map.squaresAtColumn(c.iu, c.iv) *
-               (map.columnLength(c.height) - map.columnLength(map.height(c.iu, c.iv)));
+  } else if (volume) {
+    delta += columnTerms(0.5);  // a plain heightmap's edge terms are its columns' means
   }
   if (!moved) return FastCut::kUnchanged;
   for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
-  if (volumeDelta != nullptr) *volumeDelta = edgeDelta + delta;
+  if (volume) *volumeDelta = edgeDelta + delta;
   return FastCut::kDone;
 }
 

@@ -11,7 +11,8 @@ WorkerPool::WorkerPool(int threads) {
 
 namespace {
 
-// About 30-60 microseconds of polling (a pause is some 40-140 cycles).
+// Some tens of microseconds of polling: a pause takes some 40-140 cycles by the
+// vendors' figures (not measured here).
 constexpr int kSpins = 1000;
 
 inline void pause() {
