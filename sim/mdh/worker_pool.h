@@ -4,7 +4,7 @@
 // helper that has finished polls a while (kSpins pauses) for the next run
 // before it sleeps, and so does the caller waiting for the helpers: the steps
 // of a program follow each other closely, and a sleeping thread needs a system
-// call and a reschedule to wake (polling: -8 % wall on the dome at 2 threads,
+// call and a reschedule to wake (polling: -7 % wall on the dome at 2 threads,
 // docs/check.md).
 // run() hands out the indices 0..count-1 to the caller and the helpers through
 // one atomic counter and returns when all are done; which thread runs which
