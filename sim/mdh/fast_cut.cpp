@@ -31,28 +31,52 @@ struct Scratch {
   std::vector<int> newCounts;  // of the row being rebuilt, after it
 };
 
-// edgeCrossingAfterCut with its last answer kept: up a wall beside the tool, the
-// levels of one edge in the tool's prism band (IntervalCache: one line slot for
-// all of them) ask the same question hundreds of times per step.
-class CrossingMemo {
- public:
-  double operator()(bool o0, bool o1, double oc, bool n0, bool n1, int k,
-                    std::span<const Span> tool) {
-    const unsigned states = o0 | o1 << 1 | n0 << 2 | n1 << 3;
-    if (tool.data() == tool_ && tool.size() == size_ && oc == oc_ && k == k_ && states == states_)
-      return value_;
-    value_ = edgeCrossingAfterCut(o0, o1, oc, n0, n1, k, tool);
-    tool_ = tool.data(), size_ = tool.size(), oc_ = oc, k_ = k, states_ = states;
-    return value_;
-  }
-
- private:
-  const Span* tool_ = nullptr;
-  std::size_t size_ = 0;
-  double oc_ = 0.0, value_ = 0.0;
-  int k_ = 0;
-  unsigned states_ = 0;
+// The crossings of one edge (its line along `x`) after a cut, level by level:
+// level first + i gets out[i], from the crossing it had before (`oldAt(k)`, NaN
+// where the edge had none) and the states of the edge's two columns before and
+// after (heights oh0, oh1 -> nh0, nh1). Everything the loop needs is a local, so
+// nothing is reloaded after each store. Up a wall beside the tool the levels in
+// the tool's prism band share one line slot (IntervalCache), and with the same
+// states and old crossing they ask edgeCrossingAfterCut the same question
+// hundreds of times per step: the last answer is kept.
+struct EdgeCut {
+  bool up;  // the map's direction: a column of height h holds levels <= h (else >= h)
+  double oh0, oh1, nh0, nh1;
+  int start;  // the edge's first grid coordinate along x
 };
+
+// Returns whether any crossing differs from the one before (meaningful where the
+// edge's layout is the same before and after). `keepOffLines`: a level whose
+// line the tool misses keeps its crossing untouched (both columns unchanged).
+template <bool keepOffLines, class OldAt>
+bool edgeCrossings(const EdgeCut& c, int first, int count, const IntervalCache& cache, int x,
+                   int fixed, bool levelIsU, OldAt oldAt, double* out) {
+  const Span* lastTool = nullptr;
+  std::size_t lastSize = 0;
+  double lastOld = 0.0, lastValue = 0.0;
+  unsigned lastStates = ~0u;
+  bool changed = false;
+  for (int i = 0; i < count; ++i) {
+    const int k = first + i;
+    const double oc = oldAt(k);
+    const auto tool = levelIsU ? cache.line(x, k, fixed) : cache.line(x, fixed, k);
+    if (keepOffLines && tool.empty()) {
+      out[i] = oc;
+      continue;
+    }
+    const bool o0 = c.up ? k <= c.oh0 : k >= c.oh0, o1 = c.up ? k <= c.oh1 : k >= c.oh1;
+    const bool n0 = c.up ? k <= c.nh0 : k >= c.nh0, n1 = c.up ? k <= c.nh1 : k >= c.nh1;
+    const unsigned states = o0 | o1 << 1 | n0 << 2 | n1 << 3;
+    if (!(tool.data() == lastTool && tool.size() == lastSize && oc == lastOld &&
+          states == lastStates)) {
+      lastValue = edgeCrossingAfterCut(o0, o1, oc, n0, n1, c.start, tool);
+      lastTool = tool.data(), lastSize = tool.size(), lastOld = oc, lastStates = states;
+    }
+    changed = changed || !(lastValue == oc);
+    out[i] = lastValue;
+  }
+  return changed;
+}
 
 // One solid run from the base face: its far end is the column's new height.
 bool heightFromRuns(const ThreeMap& m, const std::vector<Span>& runs, double& out) {
@@ -139,14 +163,13 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
   const int a = m.axis();
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
+  const bool up = m.direction().sign > 0, levelIsU = axisU(x) == a;
+  const int fixed = box.lo[y] + r;
   std::vector<double>& src = m.row(family, r);
   std::vector<double>& dst = s.row;
   dst.clear();
   const double weight = 0.5 * m.squaresAtEdge(family, r);
   std::size_t pos = 0;
-  std::array<int, 3> p{};
-  p[y] = box.lo[y] + r;
-  CrossingMemo crossing;
   for (int e = 0; e < m.edgesInRow(family); ++e) {
     const double oh0 = m.rowHeight(family, r, e), oh1 = m.rowHeight(family, r, e + 1);
     const double nh0 = s.heights[e], nh1 = s.heights[e + 1];
@@ -156,24 +179,24 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
     const bool touched = s.changed[e] || s.changed[e + 1];
     const bool reached = touched || (e >= e0 && e < e1);
     const std::size_t start = dst.size();
-    bool moved = touched;
-    for (int i = 0; i < ncount; ++i) {
-      const int k = nfirst + i;
-      const bool hadOne = k >= ofirst && k < ofirst + ocount;
-      double value = hadOne ? src[pos + (k - ofirst)] : std::nan("");
-      if (reached) {
-        p[a] = k;
-        const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
-        value = crossing(m.solidAt(oh0, k), m.solidAt(oh1, k), value, m.solidAt(nh0, k),
-                         m.solidAt(nh1, k), box.lo[x] + e, tool);
-        // Untouched edges keep their layout: compare with the old crossing.
-        moved = moved || !(value == src[pos + i]);
-      }
-      dst.push_back(value);
+    dst.resize(start + static_cast<std::size_t>(ncount));
+    double* out = dst.data() + start;
+    const double* old = src.data() + pos;
+    if (!reached) {
+      // Neither column moved and the tool is not here: the same crossings.
+      std::copy_n(old, ocount, out);
+    } else {
+      const auto oldAt = [&](int k) {
+        return k >= ofirst && k < ofirst + ocount ? old[k - ofirst] : std::nan("");
+      };
+      // Untouched edges keep their layout: `changed` compares level by level.
+      const bool changed = edgeCrossings<false>({up, oh0, oh1, nh0, nh1, box.lo[x] + e}, nfirst,
+                                                ncount, cache, x, fixed, levelIsU, oldAt, out);
+      const bool moved = touched || changed;
+      if (moved && weight > 0.0 && delta != nullptr)
+        *delta += weight * (m.edgeIntegral(nh0, nh1, box.lo[x] + e, out) -
+                            m.edgeIntegral(oh0, oh1, box.lo[x] + e, old));
     }
-    if (moved && weight > 0.0 && delta != nullptr)
-      *delta += weight * (m.edgeIntegral(nh0, nh1, box.lo[x] + e, dst.data() + start) -
-                          m.edgeIntegral(oh0, oh1, box.lo[x] + e, src.data() + pos));
     pos += ocount;
   }
   // Reuse the row's storage unless it is too small or far too large (memory is
@@ -192,36 +215,28 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
   const int a = m.axis();
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
+  const bool up = m.direction().sign > 0, levelIsU = axisU(x) == a;
+  const int fixed = box.lo[y] + r;
   std::vector<double>& row = m.row(family, r);
   const double weight = 0.5 * m.squaresAtEdge(family, r);
-  std::array<int, 3> p{};
-  p[y] = box.lo[y] + r;
   bool moved = false;
   std::size_t pos = 0;
-  CrossingMemo crossing;
   for (int e = 0; e < e1; ++e) {
-    const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
     int first = 0, count = 0;
     m.straddleCounts(countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), first, count);
     if (e < e0 || count == 0) {
       pos += count;
       continue;
     }
+    const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
     double* c = row.data() + pos;
-    if (delta != nullptr) s.oldCrossings.assign(c, c + count);
-    bool edgeMoved = false;
-    const bool s0 = m.solidAt(h0, first), s1 = m.solidAt(h1, first);  // alike on every level
-    for (int i = 0; i < count; ++i) {
-      p[a] = first + i;
-      const auto tool = cache.line(x, p[axisU(x)], p[axisV(x)]);
-      if (tool.empty()) continue;
-      const double value = crossing(s0, s1, c[i], s0, s1, box.lo[x] + e, tool);
-      if (!(value == c[i])) {
-        c[i] = value;
-        edgeMoved = true;
-      }
-    }
-    if (edgeMoved && weight > 0.0 && delta != nullptr)
+    const bool integrate = weight > 0.0 && delta != nullptr;
+    if (integrate) s.oldCrossings.assign(c, c + count);
+    // In place: level first + i reads c[i] before it writes it.
+    const bool edgeMoved = edgeCrossings<true>(
+        {up, h0, h1, h0, h1, box.lo[x] + e}, first, count, cache, x, fixed, levelIsU,
+        [&](int k) { return c[k - first]; }, c);
+    if (edgeMoved && integrate)
       *delta += weight * (m.edgeIntegral(h0, h1, box.lo[x] + e, c) -
                           m.edgeIntegral(h0, h1, box.lo[x] + e, s.oldCrossings.data()));
     moved = moved || edgeMoved;
@@ -257,12 +272,17 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   s.changes.clear();
   const bool up = map.direction().sign > 0;
   const double bottom = box.lo[a], top = box.hi[a];
+  // A z column whose top lies below the tool's lowest point (above its highest in
+  // a -z map) keeps its height: no need to ask for its line. The margin covers
+  // the intervals' snapping (1e-9) and rounding against the solid's bounds.
+  constexpr double kMargin = 1e-6;
+  const double below = up ? cache.lowest(2) - kMargin : cache.highest(2) + kMargin;
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
     for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
       const double h = map.height(iu, iv);
       // An empty column of a z map has nothing to lose: no need to ask for its line.
-      if (a == 2 && map.solidCount(h) == 0) continue;
+      if (a == 2 && (up ? h <= below : h >= below)) continue;
       const auto tool = cache.line(a, cu, cv);
       if (tool.empty() && a == 2) continue;
       // In a z map, most columns under the tool are not reached below their

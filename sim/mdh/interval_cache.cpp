@@ -66,6 +66,8 @@ IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid,
   for (int a = 0; a < 3; ++a) {
     const double lo = grid.toGrid(a, b.lo[a]);
     const double hi = grid.toGrid(a, b.hi[a]);
+    lowest_[a] = lo;
+    highest_[a] = hi;
     // Clamp in double first: a solid far outside must not overflow the cast.
     const double top = grid.cubes[a];
     const bool ok = std::isfinite(lo) && std::isfinite(hi) && lo <= hi;

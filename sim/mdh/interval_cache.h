@@ -63,6 +63,10 @@ class IntervalCache {
 
   // Vertex box covering the solid's bounds, clipped to the stock (may be empty).
   const GridBox& touched() const { return touched_; }
+  // The solid's bounds along `axis` in grid units, unclipped: no line meets it
+  // below lowest(axis) or above highest(axis).
+  double lowest(int axis) const { return lowest_[axis]; }
+  double highest(int axis) const { return highest_[axis]; }
   // Open intervals of the tool along the line of `axis` through vertex indices
   // (iu, iv) on axes (axis+1)%3 and (axis+2)%3; empty outside the bounds.
   // Throws std::logic_error for an axis the cache was not made for.
@@ -109,6 +113,7 @@ class IntervalCache {
   const GridSpec& grid_;
   const geom::LineSolid& solid_;
   GridBox touched_;
+  std::array<double, 3> lowest_{}, highest_{};
   std::unique_ptr<LineStore> owned_;
   LineStore* store_ = nullptr;
   std::uint32_t stamp_ = 0;
