@@ -208,10 +208,11 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
 }
 
 // A row without changed columns keeps its layout: only the crossings on
-// edges [e0, e1) the tool's lines reach move, in place. True if one moved;
-// the change of the row's edge terms of the volume is added to `delta` (if not null).
-bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCache& cache,
-                      Scratch& s, double* delta) {
+// edges [e0, e1) at levels [k0, k1] (the cut's reach) can move, in place. True
+// if one moved; the change of the row's edge terms of the volume is added to
+// `delta` (if not null).
+bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, int k0, int k1,
+                      const IntervalCache& cache, Scratch& s, double* delta) {
   const int a = m.axis();
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
@@ -224,7 +225,8 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
   for (int e = 0; e < e1; ++e) {
     int first = 0, count = 0;
     m.straddleCounts(countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), first, count);
-    if (e < e0 || count == 0) {
+    const int lo = std::max(first, k0), hi = std::min(first + count - 1, k1);
+    if (e < e0 || lo > hi) {
       pos += count;
       continue;
     }
@@ -232,10 +234,11 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, const Inte
     double* c = row.data() + pos;
     const bool integrate = weight > 0.0 && delta != nullptr;
     if (integrate) s.oldCrossings.assign(c, c + count);
-    // In place: level first + i reads c[i] before it writes it.
+    // In place: a level reads its crossing before it writes it.
+    double* from = c + (lo - first);
     const bool edgeMoved = edgeCrossings<true>(
-        {up, h0, h1, h0, h1, box.lo[x] + e}, first, count, cache, x, fixed, levelIsU,
-        [&](int k) { return c[k - first]; }, c);
+        {up, h0, h1, h0, h1, box.lo[x] + e}, lo, hi - lo + 1, cache, x, fixed, levelIsU,
+        [&](int k) { return from[k - lo]; }, from);
     if (edgeMoved && integrate)
       *delta += weight * (m.edgeIntegral(h0, h1, box.lo[x] + e, c) -
                           m.edgeIntegral(h0, h1, box.lo[x] + e, s.oldCrossings.data()));
@@ -330,7 +333,8 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
         if (begin == end) {
           const int ry = box.lo[y] + r;
           if (ry >= region.lo[y] && ry <= region.hi[y])
-            moved |= moveRowCrossings(map, family, r, e0, e1, cache, s, edges);
+            moved |= moveRowCrossings(map, family, r, e0, e1, region.lo[a], region.hi[a], cache, s,
+                                      edges);
           continue;
         }
         const int n = map.edgesInRow(family) + 1;
