@@ -6,10 +6,11 @@
 // grid spacing in the same run (peers/freecad/run_pathsim.py, hmap_from_stl.py).
 //
 //   bench_check [--densities 5,10,20] [--no-freecad] [--smoke] [--threads N] [--only 3|5]
-//               [--passes K]
+//               [--passes K] [--first-pass J]
 // --threads: threads cutting and meshing the stock (default 1); --only: just the 3-axis
-// or the 5-axis dome; --passes: only the first K zigzag passes (a slice for profiling; no
-// FreeCAD run).
+// or the 5-axis dome; --passes: only K zigzag passes (a slice for profiling; no FreeCAD
+// run), from pass J (default 0: the dome's edge, where the walls are tall; the tool
+// plunges into the uncut stock at the slice's start).
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -238,7 +239,7 @@ std::vector<double> parseDensities(const std::string& s) {
 int main(int argc, char** argv) {
   std::vector<double> densities{5, 10, 20};
   bool withFreecad = true, smoke = false;
-  int threads = 1, only = 0, passes = -1;
+  int threads = 1, only = 0, passes = -1, first = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--densities" && i + 1 < argc)
@@ -253,10 +254,12 @@ int main(int argc, char** argv) {
       only = std::atoi(argv[++i]);
     else if (a == "--passes" && i + 1 < argc)
       passes = std::atoi(argv[++i]);
+    else if (a == "--first-pass" && i + 1 < argc)
+      first = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
-                   "[--threads N] [--only 3|5] [--passes K]\n");
+                   "[--threads N] [--only 3|5] [--passes K] [--first-pass J]\n");
       return 2;
     }
   }
@@ -265,10 +268,14 @@ int main(int argc, char** argv) {
     densities = {2};
     withFreecad = false;
   }
-  if (passes >= 0) withFreecad = false;  // the peer runs the whole program
+  if (first < 0 || first >= lines) {
+    std::fprintf(stderr, "bench_check: --first-pass must be in [0, %d)\n", lines);
+    return 2;
+  }
+  if (passes >= 0 || first > 0) withFreecad = false;  // the peer runs the whole program
   std::vector<Case> cases;
   if (only != 5) {
-    const bench::DomeProgram p = bench::domeProgram(lines, pts, true, passes);
+    const bench::DomeProgram p = bench::domeProgram(lines, pts, true, passes, first);
     cases.push_back({"dome 3-axis",
                      kin::presets::threeAxisMill(),
                      {{0, 0, 0}, {100, 100, 30}},
@@ -281,7 +288,7 @@ int main(int argc, char** argv) {
     const kin::Machine m = kin::presets::acTrunnion();
     const kin::Kinematics kin(m);
     const bench::DomeProgram p =
-        bench::tiltedDomeProgram(kin, ballTool().length, lines, pts, passes);
+        bench::tiltedDomeProgram(kin, ballTool().length, lines, pts, passes, first);
     cases.push_back({"dome 5-axis", m, {{-50, -50, 0}, {50, 50, 30}}, 0, 0, p.text, p.moves});
   }
   withFreecad = withFreecad && !run("command -v freecadcmd").empty();
