@@ -31,6 +31,41 @@ struct Scratch {
   std::vector<int> newCounts;  // of the row being rebuilt, after it
 };
 
+// The parent heights and what solid counts need, held in locals: the loops
+// below store into rows and scratch vectors, after which anything read through
+// the map (its vector, sizes, box, direction) would be loaded again. Same
+// arithmetic as ThreeMap's.
+struct Columns {
+  explicit Columns(const ThreeMap& m)
+      : h(m.heightData()),
+        nu(m.columnsU()),
+        lo(m.box().lo[m.axis()]),
+        hi(m.box().hi[m.axis()]),
+        up(m.direction().sign > 0) {}
+  double at(int iu, int iv) const { return h[iv * nu + iu]; }
+  double rowHeight(int family, int r, int e) const { return family == 0 ? at(e, r) : at(r, e); }
+  int solidCount(double x) const {
+    if (up) {
+      if (!(x >= lo)) return 0;
+      if (x >= hi) return hi - lo + 1;
+      const int f = static_cast<int>(x);
+      return (f > x ? f - 1 : f) - lo + 1;
+    }
+    if (!(x <= hi)) return x != x ? hi - lo + 1 : 0;
+    if (x <= lo) return hi - lo + 1;
+    const int c = static_cast<int>(x);
+    return hi - (c < x ? c + 1 : c) + 1;
+  }
+  void straddleCounts(int f1, int f2, int& first, int& count) const {
+    count = f1 > f2 ? f1 - f2 : f2 - f1;
+    first = up ? lo + std::min(f1, f2) : hi - std::max(f1, f2) + 1;
+  }
+
+  const double* h;
+  int nu, lo, hi;
+  bool up;
+};
+
 // The crossings of one edge (its line along `x`) after a cut, level by level:
 // level first + i gets out[i], from the crossing it had before (`oldAt(k)`, NaN
 // where the edge had none) and the states of the edge's two columns before and
@@ -150,8 +185,8 @@ bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
   return true;
 }
 
-int countAt(const ThreeMap& m, const Scratch& s, int family, int r, int e) {
-  return s.counts[family == 0 ? r * m.columnsU() + e : e * m.columnsU() + r];
+int countAt(const Columns& c, const Scratch& s, int family, int r, int e) {
+  return s.counts[family == 0 ? r * c.nu + e : e * c.nu + r];
 }
 
 // Rebuilds one row of embedded heights; `heights` are the row's new parent
@@ -164,18 +199,20 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
   const int x = family == 0 ? m.uAxis() : m.vAxis(), y = family == 0 ? m.vAxis() : m.uAxis();
   const GridBox& box = m.box();
   const bool up = m.direction().sign > 0, levelIsU = axisU(x) == a;
-  const int fixed = box.lo[y] + r;
+  const int fixed = box.lo[y] + r, edges = m.edgesInRow(family);
+  const Columns cols(m);
   std::vector<double>& src = m.row(family, r);
   std::vector<double>& dst = s.row;
   dst.clear();
   const double weight = 0.5 * m.squaresAtEdge(family, r);
   std::size_t pos = 0;
-  for (int e = 0; e < m.edgesInRow(family); ++e) {
-    const double oh0 = m.rowHeight(family, r, e), oh1 = m.rowHeight(family, r, e + 1);
+  for (int e = 0; e < edges; ++e) {
+    const double oh0 = cols.rowHeight(family, r, e), oh1 = cols.rowHeight(family, r, e + 1);
     const double nh0 = s.heights[e], nh1 = s.heights[e + 1];
     int ofirst = 0, ocount = 0, nfirst = 0, ncount = 0;
-    m.straddleCounts(countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), ofirst, ocount);
-    m.straddleCounts(s.newCounts[e], s.newCounts[e + 1], nfirst, ncount);
+    cols.straddleCounts(countAt(cols, s, family, r, e), countAt(cols, s, family, r, e + 1), ofirst,
+                        ocount);
+    cols.straddleCounts(s.newCounts[e], s.newCounts[e + 1], nfirst, ncount);
     const bool touched = s.changed[e] || s.changed[e + 1];
     const bool reached = touched || (e >= e0 && e < e1);
     const std::size_t start = dst.size();
@@ -218,19 +255,21 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, int k0, in
   const GridBox& box = m.box();
   const bool up = m.direction().sign > 0, levelIsU = axisU(x) == a;
   const int fixed = box.lo[y] + r;
+  const Columns cols(m);
   std::vector<double>& row = m.row(family, r);
   const double weight = 0.5 * m.squaresAtEdge(family, r);
   bool moved = false;
   std::size_t pos = 0;
   for (int e = 0; e < e1; ++e) {
     int first = 0, count = 0;
-    m.straddleCounts(countAt(m, s, family, r, e), countAt(m, s, family, r, e + 1), first, count);
+    cols.straddleCounts(countAt(cols, s, family, r, e), countAt(cols, s, family, r, e + 1), first,
+                        count);
     const int lo = std::max(first, k0), hi = std::min(first + count - 1, k1);
     if (e < e0 || lo > hi) {
       pos += count;
       continue;
     }
-    const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
+    const double h0 = cols.rowHeight(family, r, e), h1 = cols.rowHeight(family, r, e + 1);
     double* c = row.data() + pos;
     const bool integrate = weight > 0.0 && delta != nullptr;
     if (integrate) s.oldCrossings.assign(c, c + count);
@@ -275,6 +314,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   s.changes.clear();
   const bool up = map.direction().sign > 0;
   const double bottom = box.lo[a], top = box.hi[a];
+  const Columns cols(map);
   // A z column whose top lies below the tool's lowest point (above its highest in
   // a -z map) keeps its height: no need to ask for its line. The margin covers
   // the intervals' snapping (1e-9) and rounding against the solid's bounds.
@@ -283,7 +323,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv)
     for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
-      const double h = map.height(iu, iv);
+      const double h = cols.at(iu, iv);
       // An empty column of a z map has nothing to lose: no need to ask for its line.
       if (a == 2 && (up ? h <= below : h >= below)) continue;
       const auto tool = cache.line(a, cu, cv);
@@ -320,10 +360,10 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   double* edges = volume ? &edgeDelta : nullptr;
   bool moved = !s.changes.empty();
   if (map.threeWay()) {
-    s.counts.resize(static_cast<std::size_t>(map.columnsU()) * map.columnsV());
-    for (int iv = 0; iv < map.columnsV(); ++iv)
-      for (int iu = 0; iu < map.columnsU(); ++iu)
-        s.counts[iv * map.columnsU() + iu] = map.solidCount(map.height(iu, iv));
+    const std::size_t columns = static_cast<std::size_t>(map.columnsU()) * map.columnsV();
+    s.counts.resize(columns);
+    int* counts = s.counts.data();
+    for (std::size_t i = 0; i < columns; ++i) counts[i] = cols.solidCount(cols.h[i]);
     for (int family = 0; family < 2; ++family) {
       const int x = family == 0 ? u : v, y = family == 0 ? v : u;
       const int e0 = region.lo[x] - box.lo[x], e1 = region.hi[x] - box.lo[x];
@@ -342,14 +382,14 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
         s.newCounts.resize(n);
         s.changed.assign(n, 0);
         for (int e = 0; e < n; ++e) {
-          s.heights[e] = map.rowHeight(family, r, e);
-          s.newCounts[e] = countAt(map, s, family, r, e);
+          s.heights[e] = cols.rowHeight(family, r, e);
+          s.newCounts[e] = countAt(cols, s, family, r, e);
         }
         for (int i = begin; i < end; ++i) {
           const ColumnChange& c = s.changes[s.byRow[i]];
           const int e = family == 0 ? c.iu : c.iv;
           s.heights[e] = c.height;
-          s.newCounts[e] = map.solidCount(c.height);
+          s.newCounts[e] = cols.solidCount(c.height);
           s.changed[e] = 1;
         }
         rebuildRow(map, family, r, e0, e1, cache, s, edges);
