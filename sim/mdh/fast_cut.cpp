@@ -33,8 +33,7 @@ struct Scratch {
 
 // The parent heights and what solid counts need, held in locals: the loops
 // below store into rows and scratch vectors, after which anything read through
-// the map (its vector, sizes, box, direction) would be loaded again. Same
-// arithmetic as ThreeMap's.
+// the map (its vector, sizes, box, direction) would be loaded again.
 struct Columns {
   explicit Columns(const ThreeMap& m)
       : h(m.heightData()),
@@ -44,21 +43,9 @@ struct Columns {
         up(m.direction().sign > 0) {}
   double at(int iu, int iv) const { return h[iv * nu + iu]; }
   double rowHeight(int family, int r, int e) const { return family == 0 ? at(e, r) : at(r, e); }
-  int solidCount(double x) const {
-    if (up) {
-      if (!(x >= lo)) return 0;
-      if (x >= hi) return hi - lo + 1;
-      const int f = static_cast<int>(x);
-      return (f > x ? f - 1 : f) - lo + 1;
-    }
-    if (!(x <= hi)) return x != x ? hi - lo + 1 : 0;
-    if (x <= lo) return hi - lo + 1;
-    const int c = static_cast<int>(x);
-    return hi - (c < x ? c + 1 : c) + 1;
-  }
+  int solidCount(double x) const { return columnSolidCount(x, lo, hi, up); }
   void straddleCounts(int f1, int f2, int& first, int& count) const {
-    count = f1 > f2 ? f1 - f2 : f2 - f1;
-    first = up ? lo + std::min(f1, f2) : hi - std::max(f1, f2) + 1;
+    columnStraddle(f1, f2, lo, hi, up, first, count);
   }
 
   const double* h;

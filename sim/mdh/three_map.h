@@ -22,6 +22,28 @@
 
 namespace mdhd::mdh {
 
+// Solid vertex count of a column of height h whose levels run lo..hi, solid
+// below h (up) or above it. Floor and ceiling by truncation and one compare: no
+// libm call. Free so that a hot loop can keep lo, hi and up in locals.
+inline int columnSolidCount(double h, int lo, int hi, bool up) {
+  if (up) {
+    if (!(h >= lo)) return 0;  // -inf and NaN too
+    if (h >= hi) return hi - lo + 1;
+    const int f = static_cast<int>(h);  // truncation: the floor unless h < 0
+    return (f > h ? f - 1 : f) - lo + 1;
+  }
+  if (!(h <= hi)) return h != h ? hi - lo + 1 : 0;
+  if (h <= lo) return hi - lo + 1;
+  const int c = static_cast<int>(h);
+  return hi - (c < h ? c + 1 : c) + 1;
+}
+
+// The levels where two columns with solid counts f1 and f2 differ: first, first+1, ... (count).
+inline void columnStraddle(int f1, int f2, int lo, int hi, bool up, int& first, int& count) {
+  count = f1 > f2 ? f1 - f2 : f2 - f1;
+  first = up ? lo + std::min(f1, f2) : hi - std::max(f1, f2) + 1;
+}
+
 class ThreeMap {
  public:
   // All columns full.
@@ -50,28 +72,15 @@ class ThreeMap {
   double fullHeight() const { return dir_.sign > 0 ? box_.hi[dir_.axis] : box_.lo[dir_.axis]; }
 
   // Number of solid vertices of a column with height h (inline: the hottest call).
-  // Floor and ceiling by truncation and one compare: no libm call.
   int solidCount(double h) const {
-    const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
-    if (dir_.sign > 0) {
-      if (!(h >= lo)) return 0;  // -inf and NaN too
-      if (h >= hi) return hi - lo + 1;
-      const int f = static_cast<int>(h);  // truncation: the floor unless h < 0
-      return (f > h ? f - 1 : f) - lo + 1;
-    }
-    if (!(h <= hi)) return h != h ? hi - lo + 1 : 0;
-    if (h <= lo) return hi - lo + 1;
-    const int c = static_cast<int>(h);
-    return hi - (c < h ? c + 1 : c) + 1;
+    return columnSolidCount(h, box_.lo[dir_.axis], box_.hi[dir_.axis], dir_.sign > 0);
   }
   bool solidAt(double h, int level) const { return dir_.sign > 0 ? level <= h : level >= h; }
   // The grid levels where columns h1 and h2 differ: first, first+1, ... (count).
   void straddle(double h1, double h2, int& first, int& count) const;
   // The same from the two columns' solid counts (a caller that has them already).
   void straddleCounts(int f1, int f2, int& first, int& count) const {
-    count = f1 > f2 ? f1 - f2 : f2 - f1;
-    first = dir_.sign > 0 ? box_.lo[dir_.axis] + std::min(f1, f2)
-                          : box_.hi[dir_.axis] - std::max(f1, f2) + 1;
+    columnStraddle(f1, f2, box_.lo[dir_.axis], box_.hi[dir_.axis], dir_.sign > 0, first, count);
   }
   // Solid length of a column in grid units.
   double columnLength(double h) const {
