@@ -60,7 +60,8 @@ class ThreeMap {
   int levels() const { return box_.points(dir_.axis); }
 
   double height(int iu, int iv) const { return heights_[iv * nu_ + iu]; }
-  // All parent heights, row-major (iv * columnsU() + iu): valid until setHeight.
+  // All parent heights, row-major (iv * columnsU() + iu): the pointer lives as long
+  // as the map; setHeight changes what it reads.
   const double* heightData() const { return heights_.data(); }
   void setHeight(int iu, int iv, double h) {
     double& slot = heights_[iv * nu_ + iu];
