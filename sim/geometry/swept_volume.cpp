@@ -137,6 +137,22 @@ SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const 
   return SweptVolume(part, moves, betweenErrorBound(th, n, part.reach(h), h));
 }
 
+SweptVolume SweptVolume::chainOfTranslations(const ToolPart& part,
+                                             std::span<const ToolPose> poses) {
+  if (poses.size() < 2) throw std::invalid_argument("swept volume: a chain needs two poses");
+  std::vector<Translation> moves;
+  moves.reserve(poses.size() - 1);
+  ToolPose a = normalizedPose(poses[0]);
+  for (std::size_t j = 1; j < poses.size(); ++j) {
+    const ToolPose b = normalizedPose(poses[j]);
+    if (axisAngle(a.axis, b.axis) != 0.0)
+      throw std::invalid_argument("swept volume: a chain of translations turns the tool axis");
+    moves.push_back(Translation{a.tip, b.tip, a.axis});
+    a = b;
+  }
+  return SweptVolume(part, moves, 0.0);
+}
+
 SweptVolume SweptVolume::at(const ToolPart& part, const ToolPose& pose) {
   return SweptVolume(part, std::span<const ToolPose>(&pose, 1));
 }

@@ -44,6 +44,11 @@ class SweptVolume final : public LineSolid {
   // unique great circle: split the move) or a tolerance that is not > 0 when needed.
   static SweptVolume between(const ToolPart& part, const ToolPose& a, const ToolPose& b, int steps,
                              double tolerance, SweepEnds ends = SweepEnds::kExact);
+  // The union of the part's sweeps from each pose's tip to the next's, the axis held
+  // over each segment: what SweptVolume::between gives each pair (translations of
+  // the same ends), in one solid. Runs along one line merge as in between(). Throws
+  // as between() does, and for fewer than two poses.
+  static SweptVolume chainOfTranslations(const ToolPart& part, std::span<const ToolPose> poses);
   // The part standing at one pose (a stamp).
   static SweptVolume at(const ToolPart& part, const ToolPose& pose);
   // Through a chain of poses (at least one), tips joined by segments, each pose's axis

@@ -30,4 +30,7 @@ struct Cell {
   }
 };
 
+// A deep copy of `from`'s subtree into `to` (stock_clone.cpp).
+void copyCell(const Cell& from, Cell& to);
+
 }  // namespace mdhd::mdh

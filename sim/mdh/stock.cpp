@@ -24,6 +24,12 @@ constexpr std::int64_t kMaxBricks = std::int64_t{1} << 22;
 constexpr double kMaxCellPoints = 257.0 * 257.0 * 257.0;
 constexpr char kAxisNames[] = "xyz";
 
+// A missing or broken tool axis only weakens the direction guesses and CTD.
+glm::dvec3 usableDirection(const glm::dvec3& d) {
+  if (!std::isfinite(d.x + d.y + d.z) || d == glm::dvec3(0.0)) return {0.0, 0.0, 1.0};
+  return d;
+}
+
 }  // namespace
 
 Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(options)) {
@@ -83,14 +89,9 @@ Stock::~Stock() = default;
 CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirection,
                      const geom::FreshRegion* fresh) {
   ++step_;
-  // A missing or broken tool axis only weakens the direction guesses and CTD.
-  glm::dvec3 tool_direction = toolDirection;
-  if (!std::isfinite(tool_direction.x + tool_direction.y + tool_direction.z) ||
-      tool_direction == glm::dvec3(0.0))
-    tool_direction = {0.0, 0.0, 1.0};
-  CutResult result;
+  const glm::dvec3 tool_direction = usableDirection(toolDirection);
   IntervalCache cache(grid_, solid, lines_.get());
-  if (cache.touched().empty()) return result;
+  if (cache.touched().empty()) return {};
   CutCounters step = cutBricks(cache, tool_direction, fresh);
   // Vertices forced cells dropped are cut out of every other cell holding
   // them (which may force more): neighbours keep one state per vertex.
@@ -102,6 +103,11 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
     step.add(cutBricks(dropCache, tool_direction, nullptr));
   }
   totals_.add(step);
+  return result(step);
+}
+
+CutResult Stock::result(const CutCounters& step) const {
+  CutResult result;
   const double h3 = grid_.h * grid_.h * grid_.h;
   result.removed_volume = options_.step_volumes ? step.removed * h3 : 0.0;
   result.touched = step.touched;
@@ -109,6 +115,31 @@ CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirecti
   result.overhang = step.overhangEvents > 0;
   for (auto s : step.splits) result.splits += s;
   return result;
+}
+
+std::optional<CutResult> Stock::cutIfFast(const geom::LineSolid& solid,
+                                          const glm::dvec3& toolDirection,
+                                          const geom::FreshRegion* fresh, std::uint64_t steps) {
+  const glm::dvec3 tool_direction = usableDirection(toolDirection);
+  IntervalCache cache(grid_, solid, lines_.get());
+  if (cache.touched().empty()) {
+    step_ += steps;
+    return CutResult{};
+  }
+  // Every slow cut counts an overhang event at the leaf it starts from (cut_cell.cpp),
+  // and vertex drops follow only from slow cuts: no event, no slow path.
+  BrickUndo undo;
+  ++step_;
+  const CutCounters step = cutBricks(cache, tool_direction, fresh, &undo);
+  if (step.overhangEvents > 0 || !step.dropped.empty()) {
+    for (std::size_t i = 0; i < undo.bricks.size(); ++i)
+      roots_[static_cast<std::size_t>(undo.bricks[i])] = std::move(undo.before[i]);
+    --step_;
+    return std::nullopt;
+  }
+  step_ += steps - 1;
+  totals_.add(step);
+  return result(step);
 }
 
 GridBox Stock::freshReach(const GridBox& box, const geom::FreshRegion* fresh) const {
@@ -134,7 +165,7 @@ GridBox Stock::freshReach(const GridBox& box, const geom::FreshRegion* fresh) co
 }
 
 CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direction,
-                             const geom::FreshRegion* fresh) {
+                             const geom::FreshRegion* fresh, BrickUndo* undo) {
   const GridBox& t = cache.touched();
   std::vector<int> items;
   std::vector<GridBox> reach;
@@ -162,8 +193,13 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
     return reach[l].pointCount() > reach[r].pointCount();
   });
   std::vector<CutCounters> counters(items.size());
+  if (undo != nullptr) {
+    undo->bricks = items;
+    undo->before.resize(items.size());
+  }
   const std::function<void(std::size_t)> work = [&](std::size_t k) {
     const std::size_t i = order[k];
+    if (undo != nullptr) copyCell(roots_[items[i]], undo->before[i]);
     const CutContext ctx{grid_,
                          cache,
                          reach[i],

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -90,6 +91,15 @@ class Stock {
   // the bit (line_segments.h, kToolSlack).
   CutResult cut(const geom::LineSolid& solid, const glm::dvec3& tool_direction,
                 const geom::FreshRegion* fresh = nullptr);
+  // The same cut, taken only when every cell it reaches stays in its direction
+  // without a split (the fast path): otherwise the stock is left exactly as it was
+  // and nothing is returned. The slow path's choices (a new direction, a split plane,
+  // RS's seed) depend on the order of the steps, the fast path's heights and
+  // crossings only on the union of what they remove: a union of `steps` consecutive
+  // sweeps cut here leaves the stock those steps cut one by one would, and counts as
+  // that many steps. Costs a copy of the bricks it reaches, kept for the undo.
+  std::optional<CutResult> cutIfFast(const geom::LineSolid& solid, const glm::dvec3& tool_direction,
+                                     const geom::FreshRegion* fresh, std::uint64_t steps);
   void setToolRadius(double mm) { toolRadius_ = mm; }
 
   Overlap probe(const geom::LineSolid& solid, double tolerance = 0.0) const;
@@ -118,8 +128,14 @@ class Stock {
   Stock(const Stock& other, CloneTag);
   const Cell* leafAt(const glm::dvec3& g) const;
   // One pass of a step over the bricks the cache reaches, on the workers.
+  // `undo`, when given, receives the bricks cut and a copy of each as it was before.
+  struct BrickUndo {
+    std::vector<int> bricks;
+    std::vector<Cell> before;
+  };
   CutCounters cutBricks(IntervalCache& cache, const glm::dvec3& toolDirection,
-                        const geom::FreshRegion* fresh);
+                        const geom::FreshRegion* fresh, BrickUndo* undo = nullptr);
+  CutResult result(const CutCounters& step) const;
   // The vertices of `box` a change inside `fresh` can move (crossings on edges
   // with an end in it included): `box` itself without a region.
   GridBox freshReach(const GridBox& box, const geom::FreshRegion* fresh) const;

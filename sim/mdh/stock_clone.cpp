@@ -3,7 +3,6 @@
 #include "sim/mdh/stock.h"
 
 namespace mdhd::mdh {
-namespace {
 
 void copyCell(const Cell& from, Cell& to) {
   to.box = from.box;
@@ -19,8 +18,6 @@ void copyCell(const Cell& from, Cell& to) {
     copyCell(*from.child[i], *to.child[i]);
   }
 }
-
-}  // namespace
 
 Stock::Stock(const Stock& other, CloneTag)
     : options_(other.options_),
