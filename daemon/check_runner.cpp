@@ -104,6 +104,7 @@ check::Report runCheckJob(const LoadedJob& loaded, const CheckControls& controls
     kin = std::make_unique<kin::Kinematics>(*job.machine);
     check::SimulationOptions options = simulationOptions(job.options);
     options.threads = std::max(1, controls.threads);
+    if (controls.batch_steps > 0) options.batch_steps = controls.batch_steps;
     sim = std::make_unique<check::Simulation>(*kin, job.tools, job.stock, fixtureSolids(job),
                                               options);
   } catch (const std::exception& e) {

@@ -24,6 +24,9 @@ struct CheckControls {
   // the command line uses the machine's cores, the service 1 (it runs one job per core
   // already).
   int threads = 1;
+  // Feed steps cut at once (check::SimulationOptions::batch_steps); 0: its default.
+  // The report does not depend on it.
+  int batch_steps = 0;
 };
 
 // The job's fixtures as solids for the simulation.

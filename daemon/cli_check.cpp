@@ -1,4 +1,5 @@
-// mdhd check JOB.json [--report R.json] [--mesh M.stl] [--threads N]: the whole pre-run check.
+// mdhd check JOB.json [--report R.json] [--mesh M.stl] [--threads N] [--batch N]: the whole
+// pre-run check.
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,16 +22,18 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr const char* kCheckUsage =
-    "usage: mdhd check JOB.json [--report REPORT.json] [--mesh RESULT.stl] [--threads N]\n";
+    "usage: mdhd check JOB.json [--report REPORT.json] [--mesh RESULT.stl] [--threads N] "
+    "[--batch N]\n";
 
 struct CheckArgs {
   std::string job;
   std::string report;
   std::string mesh;
   int threads = 0;  // 0: one per core
+  int batch = 0;    // feed steps cut at once; 0: the default
 };
 
-// The cutting threads: a count from 1 to 256, or 0 for the machine's cores.
+// A count from 0 to 256 (the cutting threads, 0: the machine's cores; the batch size).
 bool parseThreads(const std::string& text, int& out) {
   if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string::npos)
     return false;
@@ -50,6 +53,13 @@ bool parseArgs(const Args& args, CheckArgs& out, std::ostream& err) {
     } else if (a == "--threads") {
       if (i + 1 >= args.size() || !parseThreads(args[i + 1], out.threads)) {
         err << "mdhd check: --threads needs a count from 0 (one per core) to 256\n" << kCheckUsage;
+        return false;
+      }
+      ++i;
+    } else if (a == "--batch") {
+      if (i + 1 >= args.size() || !parseThreads(args[i + 1], out.batch) || out.batch < 1) {
+        err << "mdhd check: --batch needs a count of steps from 1 (one by one) to 256\n"
+            << kCheckUsage;
         return false;
       }
       ++i;
@@ -172,6 +182,7 @@ int runCheck(const Args& args, std::ostream& out, std::ostream& err) {
     controls.threads = a.threads > 0
                            ? a.threads
                            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    controls.batch_steps = a.batch;
     controls.progress = [&](double fraction, std::int64_t moves) {
       progress.update(fraction, moves);
     };

@@ -6,7 +6,8 @@
 // grid spacing in the same run (peers/freecad/run_pathsim.py, hmap_from_stl.py).
 //
 //   bench_check [--densities 5,10,20] [--no-freecad] [--smoke] [--threads N] [--only 3|5]
-//               [--passes K] [--first-pass J]
+//               [--passes K] [--first-pass J] [--batch B]
+// --batch: feed steps cut at once (check::SimulationOptions::batch_steps; 1: one by one);
 // --threads: threads cutting and meshing the stock (default 1); --only: just the 3-axis
 // or the 5-axis dome; --passes: only K zigzag passes (a slice for profiling; no FreeCAD
 // run), from pass J (default 0: the dome's edge, where the walls are tall; the tool
@@ -96,12 +97,13 @@ double processCpuSeconds() {
 }
 
 // One run in this process: simulation, then the mesh into the error sink.
-nlohmann::json simulate(const Case& c, double density, int threads) {
+nlohmann::json simulate(const Case& c, double density, int threads, int batch) {
   const kin::Kinematics kin(c.machine);
   const std::vector<geom::Tool> tools{ballTool()};
   check::SimulationOptions options;
   options.density = density;
   options.threads = threads;
+  if (batch > 0) options.batch_steps = batch;
   const Clock::time_point t0 = Clock::now();
   check::Simulation sim(kin, tools, c.stock, {}, options);
   gcode::InterpreterConfig config;
@@ -144,11 +146,14 @@ nlohmann::json simulate(const Case& c, double density, int threads) {
           {"overcut_mm", errors.overcut()},
           {"undercut_mm", errors.undercut()},
           {"cut_ms", r.timing.cut_ms},
-          {"probe_ms", r.timing.probe_ms}};
+          {"probe_ms", r.timing.probe_ms},
+          {"batches", sim.cutBatchStats().batches},
+          {"batched_steps", sim.cutBatchStats().steps},
+          {"refused", sim.cutBatchStats().refused}};
 }
 
 // The run in a child process, so that its peak memory is its own.
-nlohmann::json simulateInChild(const Case& c, double density, int threads) {
+nlohmann::json simulateInChild(const Case& c, double density, int threads, int batch) {
   int fds[2];
   if (pipe(fds) != 0) return {{"error", "pipe"}};
   const pid_t pid = fork();
@@ -156,7 +161,7 @@ nlohmann::json simulateInChild(const Case& c, double density, int threads) {
     close(fds[0]);
     std::string text;
     try {
-      text = simulate(c, density, threads).dump();
+      text = simulate(c, density, threads, batch).dump();
     } catch (const std::exception& e) {
       text = nlohmann::json{{"error", e.what()}}.dump();
     }
@@ -239,7 +244,7 @@ std::vector<double> parseDensities(const std::string& s) {
 int main(int argc, char** argv) {
   std::vector<double> densities{5, 10, 20};
   bool withFreecad = true, smoke = false;
-  int threads = 1, only = 0, passes = -1, first = 0;
+  int threads = 1, only = 0, passes = -1, first = 0, batch = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--densities" && i + 1 < argc)
@@ -256,10 +261,12 @@ int main(int argc, char** argv) {
       passes = std::atoi(argv[++i]);
     else if (a == "--first-pass" && i + 1 < argc)
       first = std::atoi(argv[++i]);
+    else if (a == "--batch" && i + 1 < argc)
+      batch = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
-                   "[--threads N] [--only 3|5] [--passes K] [--first-pass J]\n");
+                   "[--threads N] [--only 3|5] [--passes K] [--first-pass J] [--batch B]\n");
       return 2;
     }
   }
@@ -303,7 +310,7 @@ int main(int argc, char** argv) {
   int failures = 0;
   for (const Case& c : cases)
     for (double d : densities) {
-      const nlohmann::json r = simulateInChild(c, d, threads);
+      const nlohmann::json r = simulateInChild(c, d, threads, batch);
       if (r.contains("error")) {
         std::printf("%-12s %4g error: %s\n", c.name.c_str(), d,
                     r["error"].get<std::string>().c_str());
@@ -324,6 +331,9 @@ int main(int argc, char** argv) {
           r["final_mm3"].get<double>(), r["leaves"].get<long long>(), r["cut_ms"].get<double>(),
           r["probe_ms"].get<double>(), r["mesh_cpu_s"].get<double>(),
           r["triangles"].get<long long>());
+      std::printf("  cut batches %lld of %lld steps, %lld refused (cut again step by step)\n",
+                  r["batches"].get<long long>(), r["batched_steps"].get<long long>(),
+                  r["refused"].get<long long>());
       if (withFreecad && c.name == "dome 3-axis") {
         const nlohmann::json f = freecad(work, peerGcode, d);
         if (f.contains("error")) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 
@@ -27,16 +29,20 @@ double msSince(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// Adds the time spent in a scope to a counter.
+// Adds the time spent in a scope to a counter, less what `nested` (another
+// counter, timed inside the scope) gained meanwhile.
 class ScopeTimer {
  public:
-  explicit ScopeTimer(double& ms) : ms_(ms), start_(Clock::now()) {}
-  ~ScopeTimer() { ms_ += msSince(start_); }
+  explicit ScopeTimer(double& ms, const double* nested = nullptr)
+      : ms_(ms), nested_(nested), nestedStart_(nested ? *nested : 0.0), start_(Clock::now()) {}
+  ~ScopeTimer() { ms_ += msSince(start_) - (nested_ ? *nested_ - nestedStart_ : 0.0); }
   ScopeTimer(const ScopeTimer&) = delete;
   ScopeTimer& operator=(const ScopeTimer&) = delete;
 
  private:
   double& ms_;
+  const double* nested_;
+  double nestedStart_;
   Clock::time_point start_;
 };
 
@@ -82,6 +88,7 @@ Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>
       fixtures_(std::make_shared<const std::vector<std::unique_ptr<geom::LineSolid>>>(
           std::move(fixtures))),
       options_(std::move(options)),
+      batch_(options_.batch_steps),
       started_(Clock::now()) {
   for (const geom::Tool& t : tools) {
     ToolParts p{t, geom::makeToolPart(t, geom::ToolPartKind::kCutter),
@@ -106,6 +113,7 @@ Simulation::Simulation(const Simulation& from, ForkTag)
       options_(from.options_),
       contact_tolerance_(from.contact_tolerance_),
       current_tool_(from.current_tool_),
+      batch_(from.options_.batch_steps),
       episodes_(from.episodes_),
       started_(Clock::now()) {
   stats_.stock_volume_mm3 = stock_->volume();
@@ -114,7 +122,14 @@ Simulation::Simulation(const Simulation& from, ForkTag)
 
 Simulation::~Simulation() = default;
 
+void Simulation::requireFlushed(const char* what) const {
+  if (!batch_.empty())
+    throw std::logic_error(std::string("Simulation::") + what +
+                           " with cuts still batched: call flushCuts() first");
+}
+
 std::unique_ptr<Simulation> Simulation::fork() const {
+  requireFlushed("fork");
   return std::unique_ptr<Simulation>(new Simulation(*this, ForkTag{}));
 }
 
@@ -138,6 +153,7 @@ void Simulation::motion(const gcode::Motion& m) {
 
 void Simulation::machineMotion(const gcode::Motion& m, double seconds) {
   simulate(m, &seconds);
+  flushCuts();  // a live stock is the machine's now
 }
 
 void Simulation::simulate(const gcode::Motion& m, const double* known_seconds) {
@@ -310,8 +326,16 @@ LineGrid stockLines(const mdh::Stock& stock) {
 
 void Simulation::cutterStep(const Step& step, bool& removed) {
   const gcode::Motion& m = step.m;
+  const geom::ToolPose& a = step.a.pose;
   const bool rapid = m.type == gcode::MotionType::kRapid;
-  if (rapid || m.spindle == gcode::SpindleState::kOff) {
+  const bool spindleOff = m.spindle == gcode::SpindleState::kOff;
+  const bool fromLastCut = cut_end_ && cut_end_part_ == &step.parts.cutter &&
+                           cut_end_->tip == a.tip && cut_end_->axis == a.axis;
+  const bool translation = a.axis == step.b.pose.axis;
+  if (!(fromLastCut && translation && !rapid && !spindleOff) ||
+      !batch_.continues(step.parts.cutter, a))
+    flushCuts();
+  if (rapid || spindleOff) {
     // The removal itself is the collision: measure it before the material is gone.
     ScopeTimer timer(timing_.probe_ms);
     if (stock_->probe(step.cutter, contact_tolerance_).touched) {
@@ -332,33 +356,50 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
           measure);
     }
   }
-  ScopeTimer timer(timing_.cut_ms);
-  glm::dvec3 dir = step.a.pose.axis + step.b.pose.axis;
+  glm::dvec3 dir = a.axis + step.b.pose.axis;
   dir = glm::dot(dir, dir) > 1e-12 ? glm::normalize(dir) : step.b.pose.axis;
-  const geom::ToolPose& a = step.a.pose;
-  const bool fromLastCut = cut_end_ && cut_end_part_ == &step.parts.cutter &&
-                           cut_end_->tip == a.tip && cut_end_->axis == a.axis;
-  const auto fresh = fromLastCut ? geom::freshRegion(step.parts.cutter, a, step.b.pose)
-                                 : std::optional<geom::FreshRegion>();
+  auto fresh = fromLastCut ? geom::freshRegion(step.parts.cutter, a, step.b.pose)
+                           : std::optional<geom::FreshRegion>();
   cut_end_.reset();
   if (m.tool != removal_tool_) closeToolRemoval(m.tool);
-  const mdh::CutResult r = stock_->cut(step.cutter, dir, fresh ? &*fresh : nullptr);
-  if (a.axis == step.b.pose.axis) {
+  if (translation) {
     cut_end_ = step.b.pose;
     cut_end_part_ = &step.parts.cutter;
   }
-  if (r.touched) {
-    removed = true;
-    removal_touched_ = true;
+  if (fresh && translation && !rapid && !spindleOff) {
+    {
+      // Whether this step removes material is asked before its cut is made (the
+      // batch's cuts come later), of the stock less the steps batched before it.
+      ScopeTimer timer(timing_.cut_ms);
+      if (batch_.add(*stock_, step.parts.cutter, a, step.b.pose, step.cutter, std::move(*fresh),
+                     dir, m.pos.line))
+        removed = true;
+    }
+    if (batch_.full()) flushCuts();
+    return;
   }
+  ScopeTimer timer(timing_.cut_ms);
+  const mdh::CutResult r = stock_->cut(step.cutter, dir, fresh ? &*fresh : nullptr);
+  if (r.touched) removed = true;
+  noteCut(r, m.pos.line);
+}
+
+void Simulation::noteCut(const mdh::CutResult& r, int line) {
+  if (r.touched) removal_touched_ = true;
   if (r.overhang_events > 0) {
     overhang_.events += r.overhang_events;
-    if (!overhang_.first_line) overhang_.first_line = m.pos.line;
+    if (!overhang_.first_line) overhang_.first_line = line;
   }
 }
 
+void Simulation::flushCuts() {
+  if (batch_.empty()) return;
+  ScopeTimer timer(timing_.cut_ms);
+  batch_.flush(*stock_, [this](int line, const mdh::CutResult& r) { noteCut(r, line); });
+}
+
 void Simulation::stockContacts(const Step& step) {
-  ScopeTimer timer(timing_.probe_ms);
+  ScopeTimer timer(timing_.probe_ms, &timing_.cut_ms);  // batched cuts made here are cut time
   const auto material = [this](int ix, int iy, double, double, std::vector<geom::Interval>& out) {
     stock_->solidIntervals(2, ix, iy, out);
   };
@@ -374,8 +415,14 @@ void Simulation::stockContacts(const Step& step) {
   };
   for (const auto& check : checks) {
     if (!check.sweep) continue;
-    const mdh::Overlap overlap = stock_->probe(*check.sweep, contact_tolerance_);
+    mdh::Overlap overlap = stock_->probe(*check.sweep, contact_tolerance_);
     if (!overlap.touched) continue;
+    if (!batch_.empty()) {
+      // The stock still holds what the batched steps remove: an overlap may be theirs.
+      flushCuts();
+      overlap = stock_->probe(*check.sweep, contact_tolerance_);
+      if (!overlap.touched) continue;
+    }
     const EpisodeKey key{check.type, check.name, -1, -1};
     // A continuing contact that reaches no further along any grid line than before
     // cannot be much deeper: keep the episode open without measuring it again.
@@ -459,6 +506,7 @@ void Simulation::closeToolRemoval(int next) {
 }
 
 Report Simulation::snapshot(std::int64_t blocks) const {
+  requireFlushed("snapshot");
   Report report;
   RunStats stats = stats_;
   stats.blocks = blocks;
@@ -482,6 +530,7 @@ Report Simulation::snapshot(std::int64_t blocks) const {
 }
 
 Report Simulation::finish(std::int64_t blocks) {
+  flushCuts();
   const Clock::time_point t0 = Clock::now();
   Report report = snapshot(blocks);
   timing_.finish_ms += msSince(t0);

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "sim/check/contact_depth.h"
+#include "sim/check/cut_batch.h"
 #include "sim/check/episodes.h"
 #include "sim/check/motion_steps.h"
 #include "sim/check/report.h"
@@ -41,6 +42,9 @@ struct SimulationOptions {
   bool three_way = true;
   double contact_tolerance = -1.0;  // < 0: half the grid spacing
   int threads = 1;                  // stock cutting threads (0: hardware concurrency)
+  // Feed steps translating one cutter along a chain are cut up to this many at once
+  // (cut_batch.h; 1: one by one). The report does not depend on it.
+  int batch_steps = 16;
 };
 
 // Thrown out of motion() when the cancel flag is raised; the interpreter passes it on.
@@ -73,7 +77,8 @@ class Simulation final : public gcode::MotionSink {
   // and options, a deep copy of the stock as it is now, the current tool and the
   // collision episodes so far (a contact going on is not new to the copy), fresh
   // statistics. `kin` and the fixtures are shared read-only, so the copy may run on
-  // another thread while this one goes on.
+  // another thread while this one goes on. Throws std::logic_error while cuts are
+  // batched (after motion(): flushCuts() first).
   std::unique_ptr<Simulation> fork() const;
 
   // Called after every motion with its place and the number of motions so far.
@@ -99,13 +104,22 @@ class Simulation final : public gcode::MotionSink {
 
   // The report as it would be if the run ended now (a live shadow's): the same as
   // finish() but leaves the run going. Walks the stock: not for every motion.
+  // Throws std::logic_error while cuts are batched, as fork().
   Report snapshot(std::int64_t blocks) const;
 
   // Collision episodes so far, in order of their start; the last ones may still
   // be deepening.
   const std::vector<Collision>& collisions() const { return episodes_.collisions(); }
 
-  const mdh::Stock& stock() const { return *stock_; }
+  // After motion() the last steps' cuts may still be batched: flushCuts() makes
+  // them (machineMotion() and finish() do). stock() throws std::logic_error until
+  // then, rather than show a stock that lags the program.
+  const mdh::Stock& stock() const {
+    requireFlushed("stock");
+    return *stock_;
+  }
+  void flushCuts();
+  const CutBatchStats& cutBatchStats() const { return batch_.stats(); }
   double contactTolerance() const { return contact_tolerance_; }
 
  private:
@@ -126,6 +140,8 @@ class Simulation final : public gcode::MotionSink {
   void cutterStep(const Step& step, bool& removed);
   // Books the removal of the tool that cut until now (if it did) and starts `next`'s.
   void closeToolRemoval(int next);
+  // Books a cut's removal and overhang events against the motion at `line`.
+  void noteCut(const mdh::CutResult& r, int line);
   void stockContacts(const Step& step);
   void fixtureContacts(const Step& step);
   Collision entry(const Step& step, CollisionType type, double f) const;
@@ -138,6 +154,7 @@ class Simulation final : public gcode::MotionSink {
                       Bracket& bracket, int bisections) const;
   geom::SweptVolume sweep(const Step& step, const geom::ToolPart& part, double f) const;
   void checkCancel() const;
+  void requireFlushed(const char* what) const;
 
   const kin::Kinematics& kin_;
   std::map<int, ToolParts> tools_;
@@ -152,6 +169,7 @@ class Simulation final : public gcode::MotionSink {
   // stock where it reaches beyond that pose (geom::freshRegion). Not copied by fork().
   std::optional<geom::ToolPose> cut_end_;
   const geom::ToolPart* cut_end_part_ = nullptr;
+  CutBatch batch_;
   // Each tool's removed volume is the stock's volume when it started cutting less
   // its volume when the next one did (or now): the steps keep no volume deltas.
   int removal_tool_ = -1;

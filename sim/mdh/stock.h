@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -103,6 +104,14 @@ class Stock {
   void setToolRadius(double mm) { toolRadius_ = mm; }
 
   Overlap probe(const geom::LineSolid& solid, double tolerance = 0.0) const;
+  // Whether a cut of `solid` would remove material along some z grid line of the
+  // stock as it would be after cuts of `cutBefore` (not made yet): `solid`'s
+  // intervals, less theirs, reaching into the solid by more than kToolSlack.
+  // Only lines inside `region` (when given) are looked at, the one nearest `first`
+  // first (a step's end tip, where it most likely removes); stops at the first such line.
+  bool removesMaterial(const geom::LineSolid& solid, const geom::FreshRegion* region,
+                       std::span<const geom::LineSolid* const> cutBefore,
+                       const glm::dvec3& first) const;
   bool isSolid(const glm::dvec3& p) const;
   // Solid intervals (mm) along the grid line of `axis` through vertex indices
   // iu on axis (axis+1)%3 and iv on (axis+2)%3.

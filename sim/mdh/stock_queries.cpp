@@ -5,6 +5,7 @@
 #include <string>
 
 #include "sim/mdh/interval_cache.h"
+#include "sim/mdh/line_segments.h"
 #include "sim/mdh/stock.h"
 
 namespace mdhd::mdh {
@@ -211,6 +212,72 @@ Overlap Stock::probe(const geom::LineSolid& solid, double tolerance) const {
     }
   out.touched = out.max_length > tolerance;
   return out;
+}
+
+bool Stock::removesMaterial(const geom::LineSolid& solid, const geom::FreshRegion* region,
+                            std::span<const geom::LineSolid* const> cutBefore,
+                            const glm::dvec3& first) const {
+  geom::Aabb box = solid.bounds();
+  if (region != nullptr) box = region->clip(box);
+  if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z)) return false;
+  int lo[2], hi[2];
+  for (int a = 0; a < 2; ++a) {
+    lo[a] = static_cast<int>(
+        std::clamp(std::ceil(grid_.toGrid(a, box.lo[a])), 0.0, double(grid_.cubes[a]) + 1.0));
+    hi[a] = static_cast<int>(
+        std::clamp(std::floor(grid_.toGrid(a, box.hi[a])), -1.0, double(grid_.cubes[a])));
+  }
+  std::vector<geom::Interval> mm;
+  std::vector<Span> tool, other, left, segs;
+  const auto along = [&](const geom::LineSolid& s, double x, double y, std::vector<Span>& out) {
+    mm.clear();
+    s.lineIntervals(2, x, y, mm);
+    out.clear();
+    for (const geom::Interval& i : mm)
+      out.push_back({grid_.toGrid(2, i.lo), grid_.toGrid(2, i.hi)});
+  };
+  // Cheapest test first: the tool's intervals, the stock's, then the pending cuts'.
+  const auto removes = [&](int ix, int iy) {
+    const double x = grid_.toMm(0, ix), y = grid_.toMm(1, iy);
+    along(solid, x, y, tool);
+    if (tool.empty()) return false;
+    gridLineSegments(2, ix, iy, segs);
+    left.clear();
+    for (const Span& s : segs)
+      for (const Span& t : tool) {
+        const Span both{std::max(s.lo, t.lo), std::min(s.hi, t.hi)};
+        if (both.hi - both.lo > kToolSlack) left.push_back(both);
+      }
+    tool.swap(left);
+    for (const geom::LineSolid* before : cutBefore) {
+      if (tool.empty()) return false;
+      along(*before, x, y, other);
+      if (other.empty()) continue;
+      subtractOpen(tool, other, left);
+      tool.swap(left);
+    }
+    for (const Span& t : tool)
+      if (t.hi - t.lo > kToolSlack) return true;
+    return false;
+  };
+  // Outwards from `first`, rows nearest it first and each row from its column out:
+  // a raster step's removal lies ahead of its tip, on its row or column.
+  const auto outwards = [](int centre, int from, int to, int k) {
+    const int c = std::clamp(centre, from, to);
+    // 0, +1, -1, +2, -2, ... skipping what falls outside [from, to].
+    const int below = c - from, above = to - c, pairs = std::min(below, above);
+    if (k <= 2 * pairs) return k == 0 ? c : (k % 2 == 1 ? c + (k + 1) / 2 : c - k / 2);
+    const int rest = k - 2 * pairs;
+    return above > below ? c + pairs + rest : c - pairs - rest;
+  };
+  const int fx = static_cast<int>(std::lround(grid_.toGrid(0, first.x)));
+  const int fy = static_cast<int>(std::lround(grid_.toGrid(1, first.y)));
+  for (int ky = 0; ky <= hi[1] - lo[1]; ++ky) {
+    const int iy = outwards(fy, lo[1], hi[1], ky);
+    for (int kx = 0; kx <= hi[0] - lo[0]; ++kx)
+      if (removes(outwards(fx, lo[0], hi[0], kx), iy)) return true;
+  }
+  return false;
 }
 
 void Stock::forEachLeaf(const std::function<void(const LeafView&)>& f) const {

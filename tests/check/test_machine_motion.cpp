@@ -80,6 +80,7 @@ TEST(MachineMotion, StraightJointMovesCutAsTheProgramDoes) {
   for (const gcode::Motion& m : motions) {
     if (m.type == gcode::MotionType::kArc) break;
     program->motion(m);
+    program->flushCuts();  // a program's run batches its feed steps' cuts
     live->machineMotion(jointMove(m, m.start, m.end), 0.5);
     EXPECT_DOUBLE_EQ(live->stock().volume(), program->stock().volume()) << m.pos.line;
   }
@@ -153,6 +154,8 @@ TEST(MachineMotion, ForkRunsAheadOnACopyAndSnapshotMatchesFinish) {
   const auto motions = interpret(cell.machine, kPocket);
   auto live = cell.make();
   for (std::size_t i = 0; i < 3; ++i) live->motion(motions[i]);  // lines 5, 6, 7
+  EXPECT_THROW(live->snapshot(7), std::logic_error);             // line 7's cut is still batched
+  live->flushCuts();
   const double volume = live->stock().volume();
   const Report snap = live->snapshot(7);
   EXPECT_EQ(snap.stats.blocks, 7);
@@ -179,6 +182,7 @@ TEST(MachineMotion, ForkRunsAheadOnACopyAndSnapshotMatchesFinish) {
   EXPECT_TRUE(live->collisions().empty());
 
   for (std::size_t i = 3; i < motions.size(); ++i) live->motion(motions[i]);
+  live->flushCuts();
   const Report again = live->snapshot(12);
   const Report done = live->finish(12);
   EXPECT_DOUBLE_EQ(again.stats.final_volume_mm3, done.stats.final_volume_mm3);

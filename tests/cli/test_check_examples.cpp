@@ -156,5 +156,57 @@ TEST(CheckExamples, ThreadCountChangesNothingButTime) {
   fs::remove_all(dir);
 }
 
+// Equal but for rounding: numbers within 1e-6 (relative), everything else exactly.
+void expectSameReport(const json& a, const json& b, const std::string& at) {
+  if (a.is_number() && b.is_number()) {
+    const double x = a.get<double>(), y = b.get<double>();
+    EXPECT_NEAR(x, y, 1e-9 + 1e-6 * std::abs(y)) << at;
+    return;
+  }
+  ASSERT_EQ(a.type(), b.type()) << at;
+  if (a.is_object()) {
+    ASSERT_EQ(a.size(), b.size()) << at;
+    for (auto it = a.begin(); it != a.end(); ++it) {
+      ASSERT_TRUE(b.contains(it.key())) << at << "." << it.key();
+      expectSameReport(it.value(), b[it.key()], at + "." + it.key());
+    }
+  } else if (a.is_array()) {
+    ASSERT_EQ(a.size(), b.size()) << at;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      expectSameReport(a[i], b[i], at + "[" + std::to_string(i) + "]");
+  } else {
+    EXPECT_EQ(a, b) << at;
+  }
+}
+
+// Feed steps cut in batches (the default) or one by one give the same report:
+// collisions at the same lines and depths, the same cutting times, volumes, cells
+// and overhang events (check/cut_batch.h). Memory counts the rows' capacity, which
+// depends on how they grew: within 1 %.
+TEST(CheckExamples, BatchedCutsChangeNothingButTime) {
+  for (const char* name :
+       {"contour-3axis.json", "crash-3axis.json", "side-drill-ac.json", "donut-bc.json"}) {
+    json batched = check(example(name)).report;
+    json single = check(example(name), {"--batch", "1"}).report;
+    batched.erase("timing");
+    single.erase("timing");
+    for (const char* memory : {"memory_bytes", "pointer_grid_percent"}) {
+      const double a = batched["mdh"][memory], b = single["mdh"][memory];
+      EXPECT_NEAR(a, b, 0.01 * b) << name << " " << memory;
+      batched["mdh"].erase(memory);
+      single["mdh"].erase(memory);
+    }
+    expectSameReport(batched, single, name);
+  }
+}
+
+TEST(CheckExamples, BatchOptionIsChecked) {
+  for (const char* bad : {"0", "257", "x", ""}) {
+    std::ostringstream out, err;
+    EXPECT_EQ(runCheck({example("contour-3axis.json"), "--batch", bad}, out, err), 2) << bad;
+    EXPECT_NE(err.str().find("--batch needs a count"), std::string::npos) << err.str();
+  }
+}
+
 }  // namespace
 }  // namespace mdhd::cli

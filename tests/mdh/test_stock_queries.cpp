@@ -41,6 +41,33 @@ TEST(StockQueries, ProbeMeasuresStockInsideASolidWithoutCutting) {
   EXPECT_FALSE(graze.touched);
 }
 
+TEST(StockQueries, RemovesMaterialLooksPastCutsStillToBeMade) {
+  Stock s(kStock, options(32));
+  const SphereSolid hole({5, 4, 6}, 1.5);  // a dimple in the top face
+  const glm::dvec3 centre{5, 4, 6};
+  EXPECT_TRUE(s.removesMaterial(hole, nullptr, {}, centre));
+  EXPECT_DOUBLE_EQ(s.volume(), 480.0);  // a question, not a cut
+  // A cut not made yet that holds the dimple leaves it nothing to remove...
+  const BoxSolid before({{3, 2, 4}, {7, 6, 7}});
+  const geom::LineSolid* pending[] = {&before};
+  EXPECT_FALSE(s.removesMaterial(hole, nullptr, pending, centre));
+  // ... one that holds only half of it leaves the other half.
+  const BoxSolid half({{3, 2, 4}, {5.05, 6, 7}});
+  const geom::LineSolid* halfPending[] = {&half};
+  EXPECT_TRUE(s.removesMaterial(hole, nullptr, halfPending, centre));
+  // Once made, the dimple's own cut leaves nothing to remove; a region may also rule
+  // the dimple's lines out.
+  s.cut(hole, {0, 0, 1});
+  EXPECT_FALSE(s.removesMaterial(hole, nullptr, {}, centre));
+  const SphereSolid deeper({5, 4, 5.9}, 1.5);
+  EXPECT_TRUE(s.removesMaterial(deeper, nullptr, {}, centre));
+  geom::FreshRegion elsewhere;
+  elsewhere.pieces.push_back({{{8, 0, 0}, {10, 8, 6}}});
+  EXPECT_FALSE(s.removesMaterial(deeper, &elsewhere, {}, centre));
+  // Touching the surface removes nothing.
+  EXPECT_FALSE(s.removesMaterial(SphereSolid({2, 2, 7}, 1.0), nullptr, {}, {2, 2, 7}));
+}
+
 TEST(StockQueries, AreaOfAPocketByNormalDirection) {
   Stock s(kStock, options(0));
   s.cut(BoxSolid({2, 2, 4}, {5, 6, 7}), {0, 0, 1});
