@@ -25,7 +25,6 @@ struct CheckControls {
   // already).
   int threads = 1;
   // Feed steps cut at once (check::SimulationOptions::batch_steps); 0: its default.
-  // The report does not depend on it.
   int batch_steps = 0;
 };
 

@@ -3,9 +3,10 @@
 // as one: the union of their sweeps goes to the stock once (Stock::cutIfFast), so
 // the walls a raster's steps move a grid spacing at a time are rewritten once per
 // batch instead of once per step. The stock comes out as the steps one by one would
-// leave it (cutIfFast); a batch that needs the slow path (a new direction or a
-// split, whose choice depends on the order of the steps) is cut again step by step,
-// and the batch size backs off for a while.
+// leave it (cutIfFast), up to a crossing the union may place elsewhere inside its
+// grid edge; a batch that needs the slow path (a new direction or a split, whose
+// choice depends on the order of the steps) is cut again step by step, and the batch
+// size backs off for a while.
 //
 // Until a batch is flushed the stock still holds what it will remove: a probe of
 // it then overstates contacts, never misses one (flush, then probe again).

@@ -43,7 +43,8 @@ struct SimulationOptions {
   double contact_tolerance = -1.0;  // < 0: half the grid spacing
   int threads = 1;                  // stock cutting threads (0: hardware concurrency)
   // Feed steps translating one cutter along a chain are cut up to this many at once
-  // (cut_batch.h; 1: one by one). The report does not depend on it.
+  // (cut_batch.h; 1: one by one): the same report up to the map's resolution (rarely a
+  // crossing placed elsewhere inside its grid edge).
   int batch_steps = 16;
 };
 
