@@ -19,33 +19,15 @@
 #include "sim/mdh/stock.h"
 #include "tests/mdh/random_tool_moves.h"
 #include "tests/mdh/stock_lines.h"
+#include "tests/mdh/wavy_rows.h"
 
 namespace mdhd::mdh {
 namespace {
 
-const geom::Aabb kBox{{0, 0, 0}, {12, 12, 8}};
+const geom::Aabb& kBox = testing::kWavyStock;
 
-const StockOptions& batchOptions() {
-  static const StockOptions o = [] {
-    StockOptions x;
-    x.density = 10.0;
-    x.threads = 1;
-    return x;
-  }();
-  return o;
-}
-
-// Rows over a wavy floor with the axis held: no two steps on one line.
 std::vector<geom::ToolPose> rows(const glm::dvec3& axis) {
-  std::vector<geom::ToolPose> poses;
-  for (int row = 0; row < 5; ++row)
-    for (int i = 0; i <= 40; ++i) {
-      const double x = 1.0 + (row % 2 == 0 ? i : 40 - i) * 0.25;
-      const double y = 2.0 + row * 1.7;
-      const double z = 5.0 + 0.8 * std::sin(0.7 * x) * std::cos(0.5 * y);
-      poses.push_back({{x, y, z}, axis});
-    }
-  return poses;
+  return testing::wavyRows(axis, 40, 0.25);
 }
 
 struct Outcome {
@@ -105,7 +87,7 @@ class BatchedCuts : public ::testing::TestWithParam<BatchCase> {};
 TEST_P(BatchedCuts, LeaveExactlyTheStockOfSingleSteps) {
   const geom::ToolPart part = testing::cutterPart(GetParam().shape, 3.0);
   const auto poses = rows(glm::normalize(GetParam().axis));
-  Stock single(kBox, batchOptions()), batched(kBox, batchOptions());
+  Stock single(kBox, testing::wavyOptions()), batched(kBox, testing::wavyOptions());
   const Outcome one = cutChain(single, part, poses, 1);
   const Outcome many = cutChain(batched, part, poses, GetParam().batch);
   EXPECT_LT(single.volume(), 0.97 * 12 * 12 * 8);  // it cut something
@@ -143,7 +125,7 @@ INSTANTIATE_TEST_SUITE_P(ShapesAxesSizes, BatchedCuts,
 TEST(BatchedCutsRefusal, LeavesTheStockUntouched) {
   const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
   const auto poses = rows({0, 0, 1});
-  Stock stock(kBox, batchOptions());
+  Stock stock(kBox, testing::wavyOptions());
   cutChain(stock, ball, poses, 1);
   const auto before = testing::allIntervals(stock);
   const Stats statsBefore = stock.stats();

@@ -13,36 +13,15 @@
 #include "sim/mdh/stock.h"
 #include "tests/mdh/random_tool_moves.h"
 #include "tests/mdh/stock_lines.h"
+#include "tests/mdh/wavy_rows.h"
 
 namespace mdhd::mdh {
 namespace {
 
-const geom::Aabb kFreshStock{{0, 0, 0}, {12, 12, 8}};
+using testing::kWavyStock;
 
-// One instance, copied by each stock (made in place per test, gcc 12 warned of
-// an uninitialised read inside the ruleset's initializer list).
-const StockOptions& freshOptions() {
-  static const StockOptions o = [] {
-    StockOptions x;
-    x.density = 10.0;
-    x.threads = 1;
-    return x;
-  }();
-  return o;
-}
-
-// A zigzag over a wavy floor: every step goes sideways and up or down a little,
-// the axis held (tilted when `axis` is).
 std::vector<geom::ToolPose> zigzag(const glm::dvec3& axis) {
-  std::vector<geom::ToolPose> poses;
-  for (int row = 0; row < 5; ++row)
-    for (int i = 0; i <= 24; ++i) {
-      const double x = 1.0 + (row % 2 == 0 ? i : 24 - i) * 0.4;
-      const double y = 2.0 + row * 1.7;
-      const double z = 5.0 + 0.8 * std::sin(0.7 * x) * std::cos(0.5 * y);
-      poses.push_back({{x, y, z}, axis});
-    }
-  return poses;
+  return testing::wavyRows(axis, 24, 0.4);
 }
 
 // Wrong on purpose: the region of the move backwards (its trailing half).
@@ -70,7 +49,7 @@ class FreshCuts : public ::testing::TestWithParam<FreshCase> {};
 TEST_P(FreshCuts, LeaveExactlyTheStockOfFullCuts) {
   const geom::ToolPart part = testing::cutterPart(GetParam().shape, 3.0);
   const auto poses = zigzag(glm::normalize(GetParam().axis));
-  Stock full(kFreshStock, freshOptions()), fresh(kFreshStock, freshOptions());
+  Stock full(kWavyStock, testing::wavyOptions()), fresh(kWavyStock, testing::wavyOptions());
   cutChain(full, part, poses, Region::kNone);
   cutChain(fresh, part, poses, Region::kFresh);
   EXPECT_LT(full.volume(), 0.97 * 12 * 12 * 8);  // it cut something
@@ -95,7 +74,7 @@ INSTANTIATE_TEST_SUITE_P(ShapesAndAxes, FreshCuts,
 TEST(FreshCutsCheck, AWrongRegionLeavesADifferentStock) {
   const geom::ToolPart part = testing::cutterPart(geom::ToolShape::kBall, 3.0);
   const auto poses = zigzag({0, 0, 1});
-  Stock full(kFreshStock, freshOptions()), wrong(kFreshStock, freshOptions());
+  Stock full(kWavyStock, testing::wavyOptions()), wrong(kWavyStock, testing::wavyOptions());
   cutChain(full, part, poses, Region::kNone);
   cutChain(wrong, part, poses, Region::kBackwards);
   EXPECT_GT(wrong.volume(), full.volume() + 1.0);
