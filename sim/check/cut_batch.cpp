@@ -13,11 +13,14 @@ bool CutBatch::continues(const geom::ToolPart& part, const geom::ToolPose& from)
 
 bool CutBatch::add(const mdh::Stock& stock, const geom::ToolPart& part, const geom::ToolPose& a,
                    const geom::ToolPose& b, geom::SweptVolume sweep, geom::FreshRegion fresh,
-                   const glm::dvec3& direction, int line) {
-  std::vector<const geom::LineSolid*> pending;
-  pending.reserve(sweeps_.size());
-  for (const geom::SweptVolume& s : sweeps_) pending.push_back(&s);
-  const bool removes = stock.removesMaterial(sweep, &fresh, pending, b.tip);
+                   const glm::dvec3& direction, int line, bool ask) {
+  bool removes = false;
+  if (ask) {
+    std::vector<const geom::LineSolid*> pending;
+    pending.reserve(sweeps_.size());
+    for (const geom::SweptVolume& s : sweeps_) pending.push_back(&s);
+    removes = stock.removesMaterial(sweep, &fresh, pending, b.tip);
+  }
   if (empty()) {
     part_ = &part;
     direction_ = direction;

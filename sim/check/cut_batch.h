@@ -40,14 +40,14 @@ class CutBatch {
   bool continues(const geom::ToolPart& part, const geom::ToolPose& from) const;
 
   // Adds the step of `part` from `a` to `b` (same axis) with its sweep and fresh
-  // region (geom::freshRegion: the chain's previous step ended at `a`). Returns
-  // whether it removes material: whether `sweep` reaches into the stock less the
-  // pending sweeps along some z grid line (Stock::removesMaterial), what the step
-  // cut on its own would find. The caller flushes first unless empty() or
-  // continues(part, a).
+  // region (geom::freshRegion: the chain's previous step ended at `a`). With `ask`,
+  // returns whether it removes material: whether `sweep` reaches into the stock less
+  // the pending sweeps along some z grid line (Stock::removesMaterial), what the step
+  // cut on its own would find; without, false (its motion is known to cut already).
+  // The caller flushes first unless empty() or continues(part, a).
   bool add(const mdh::Stock& stock, const geom::ToolPart& part, const geom::ToolPose& a,
            const geom::ToolPose& b, geom::SweptVolume sweep, geom::FreshRegion fresh,
-           const glm::dvec3& direction, int line);
+           const glm::dvec3& direction, int line, bool ask = true);
   bool full() const { return static_cast<int>(lines_.size()) >= cap_; }
 
   // Cuts the pending steps; `cut(line, result)` hears of every cut made: one for a

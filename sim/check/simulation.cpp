@@ -369,10 +369,11 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
   if (fresh && translation && !rapid && !spindleOff) {
     {
       // Whether this step removes material is asked before its cut is made (the
-      // batch's cuts come later), of the stock less the steps batched before it.
+      // batch's cuts come later), of the stock less the steps batched before it;
+      // not at all once an earlier step of the motion has.
       ScopeTimer timer(timing_.cut_ms);
       if (batch_.add(*stock_, step.parts.cutter, a, step.b.pose, step.cutter, std::move(*fresh),
-                     dir, m.pos.line))
+                     dir, m.pos.line, !removed))
         removed = true;
     }
     if (batch_.full()) flushCuts();

@@ -39,5 +39,29 @@ TEST(ToolUse, EachToolIsCreditedWithWhatItRemoved) {
   EXPECT_NEAR(t1->removed_volume_mm3 + t2->removed_volume_mm3, r.stats.removed_volume_mm3, 1e-6);
 }
 
+// Cutting time counts the feed moves that removed material, each whole: air moves
+// before, a retract up its own slot and a move above the stock after do not count,
+// whether the steps are cut one by one or batched (they form one chain here).
+TEST(ToolUse, CuttingTimeCountsOnlyMovesThatRemoveMaterial) {
+  for (const int batch : {1, 16}) {
+    rig::Rig s;
+    s.options.batch_steps = batch;
+    const Report r = rig::run(std::move(s),
+                              "T1 M6\nG43 H1\nS1000 M3\n"
+                              "G0 X-10 Y10 Z5\n"
+                              "G1 Z2 F600\n"  // air: 0.3 s
+                              "G1 X5\n"       // air, 2 mm above the top: 1.5 s
+                              "G1 Z-1\n"      // plunge: 0.3 s
+                              "G1 X25\n"      // slot: 2 s
+                              "G1 Z2\n"       // up its own slot: 0.3 s
+                              "G1 X35\n"      // above the stock: 1 s
+                              "M30\n");
+    const ToolUse* t1 = useOf(r, 1);
+    ASSERT_NE(t1, nullptr) << batch;
+    EXPECT_NEAR(t1->cutting_time_s, 0.3 + 2.0, 1e-9) << batch;
+    EXPECT_NEAR(t1->removed_volume_mm3, 1 * (pi * 9 + 20 * 6), 0.02 * (pi * 9 + 20 * 6)) << batch;
+  }
+}
+
 }  // namespace
 }  // namespace mdhd::check
