@@ -251,9 +251,25 @@ void Mesher::uniformLeaf(const LeafInfo& l) {
     const int u = (a + 1) % 3, v = (a + 2) % 3;
     GridPoint p{};
     p[a] = l.hi[a];
-    int owner = hint_;  // the face's vertices belong to the neighbours: hint the last one
+    p[u] = l.lo[u];
+    p[v] = l.lo[v];
+    // The face's vertices belong to the neighbours. The one owning its first corner
+    // owns a rectangle of it from there; when that neighbour is uniform, its kind
+    // answers for the whole rectangle (bricks side by side: all of the face but the
+    // far rows), and only the rest is walked.
+    int owner = view_.ownerOf(p, hint_);
+    const LeafInfo& across = view_.leaf(owner);
+    int uEnd = l.lo[u] - 1, vEnd = l.lo[v] - 1;  // the rectangle's last vertices
+    if (across.kind != LeafKind::kPartial) {
+      if ((across.kind == LeafKind::kSolid) != solid) {
+        layer[a] = true;
+        continue;
+      }
+      uEnd = across.hi[u] == n[u] ? n[u] : across.hi[u] - 1;
+      vEnd = across.hi[v] == n[v] ? n[v] : across.hi[v] - 1;
+    }
     for (p[v] = l.lo[v]; p[v] <= l.hi[v] && !layer[a]; ++p[v])
-      for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u]) {
+      for (p[u] = p[v] <= vEnd ? std::max(l.lo[u], uEnd + 1) : l.lo[u]; p[u] <= l.hi[u]; ++p[u]) {
         if (view_.solidWalk(p, owner) != solid) {
           layer[a] = true;
           break;
