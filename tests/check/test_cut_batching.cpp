@@ -1,0 +1,105 @@
+// Random 3-axis programs cut with batched feed steps (the default) and one by one
+// give the same report: the same collisions (type, lines, depth), cutting time,
+// removed volume and cells. The programs mix short feed rasters over a wavy floor
+// (the batches), arcs, plunges deep enough to bury the shank, rapids
+// into the stock and cuts with the spindle off.
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/check/check_fixture.h"
+
+namespace mdhd::check {
+namespace {
+
+std::string randomProgram(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  const auto uniform = [&](double lo, double hi) {
+    return lo + (hi - lo) * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+  };
+  std::ostringstream p;
+  p.setf(std::ios::fixed);
+  p.precision(3);
+  p << "G21 G90 G17\nT1 M6\nG43 H1\nM3 S9000\nG0 X5 Y5 Z5\n";
+  for (int block = 0; block < 12; ++block) {
+    switch (rng() % 5) {
+      case 0:
+      case 1: {  // a raster row of short feed steps over a wavy floor
+        const double y = uniform(4, 36), depth = uniform(0.5, 3.0);
+        const bool forward = rng() % 2 == 0;
+        p << "G1 X" << (forward ? 4.0 : 36.0) << " Y" << y << " Z1 F800\n";
+        for (int i = 0; i <= 40; ++i) {
+          const double x = forward ? 4.0 + 0.8 * i : 36.0 - 0.8 * i;
+          p << "G1 X" << x << " Z" << -depth + 0.6 * std::sin(0.4 * x + y) << "\n";
+        }
+        p << "G0 Z5\n";
+        break;
+      }
+      case 2: {  // an arc at a random depth
+        const double x = uniform(10, 30), y = uniform(10, 30), r = uniform(2, 6);
+        p << "G0 X" << x + r << " Y" << y << "\nG1 Z" << -uniform(0.5, 4) << " F400\n"
+          << "G3 X" << x - r << " Y" << y << " I" << -r << " J0\nG0 Z5\n";
+        break;
+      }
+      case 3: {  // a plunge, deep enough now and then to bury the shank
+        p << "G0 X" << uniform(5, 35) << " Y" << uniform(5, 35) << "\nG1 Z" << -uniform(1, 14)
+          << " F300\nG1 X" << uniform(5, 35) << "\nG0 Z5\n";
+        break;
+      }
+      default: {  // a rapid into the stock, or a cut with the spindle off
+        const bool rapid = rng() % 2 == 0;
+        if (!rapid) p << "M5\n";
+        p << "G0 X" << uniform(5, 35) << " Y" << uniform(5, 35) << "\n"
+          << (rapid ? "G0" : "G1 F300") << " Z" << -uniform(0.5, 2) << "\n"
+          << (rapid ? "G0" : "G1") << " X" << uniform(5, 35) << "\nG0 Z5\n";
+        if (!rapid) p << "M3 S9000\n";
+        break;
+      }
+    }
+  }
+  p << "M30\n";
+  return p.str();
+}
+
+Report runWith(const std::string& program, int batch) {
+  rig::Rig s;
+  s.options.density = 5;
+  s.options.batch_steps = batch;
+  return rig::run(std::move(s), program);
+}
+
+class CutBatching : public ::testing::TestWithParam<std::uint32_t> {};
+
+TEST_P(CutBatching, RandomProgramsGiveTheReportOfOneByOne) {
+  const std::string program = randomProgram(GetParam());
+  const Report one = runWith(program, 1), batched = runWith(program, 16);
+  EXPECT_GT(one.stats.removed_volume_mm3, 100.0);
+  ASSERT_EQ(batched.collisions.size(), one.collisions.size());
+  for (std::size_t i = 0; i < one.collisions.size(); ++i) {
+    const Collision &a = batched.collisions[i], &b = one.collisions[i];
+    EXPECT_EQ(a.type, b.type) << i;
+    EXPECT_EQ(a.line, b.line) << i;
+    EXPECT_EQ(a.last_line, b.last_line) << i;
+    EXPECT_NEAR(a.depth, b.depth, 1e-6) << i;
+    EXPECT_NEAR(a.path_s, b.path_s, 1e-9) << i;
+  }
+  ASSERT_EQ(batched.stats.tools.size(), one.stats.tools.size());
+  for (std::size_t i = 0; i < one.stats.tools.size(); ++i) {
+    EXPECT_NEAR(batched.stats.tools[i].cutting_time_s, one.stats.tools[i].cutting_time_s, 1e-9);
+    EXPECT_NEAR(batched.stats.tools[i].removed_volume_mm3, one.stats.tools[i].removed_volume_mm3,
+                1e-6 * one.stats.removed_volume_mm3);
+  }
+  EXPECT_NEAR(batched.stats.removed_volume_mm3, one.stats.removed_volume_mm3,
+              1e-6 * one.stats.removed_volume_mm3);
+  EXPECT_EQ(batched.mdh.leaves, one.mdh.leaves);
+  EXPECT_EQ(batched.overhang.events, one.overhang.events);
+  EXPECT_EQ(batched.overhang.first_line, one.overhang.first_line);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, CutBatching, ::testing::Values(1u, 2u, 3u, 4u, 5u, 6u));
+
+}  // namespace
+}  // namespace mdhd::check
