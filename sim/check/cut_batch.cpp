@@ -19,7 +19,10 @@ bool CutBatch::add(const mdh::Stock& stock, const geom::ToolPart& part, const ge
     std::vector<const geom::LineSolid*> pending;
     pending.reserve(sweeps_.size());
     for (const geom::SweptVolume& s : sweeps_) pending.push_back(&s);
-    removes = stock.removesMaterial(sweep, &fresh, pending, b.tip);
+    // Steps along a raster remove at the same place relative to the tool: start there.
+    glm::dvec3 hit;
+    removes = stock.removesMaterial(sweep, &fresh, pending, b.tip + lastHit_, &hit);
+    if (removes) lastHit_ = hit - b.tip;
   }
   if (empty()) {
     part_ = &part;

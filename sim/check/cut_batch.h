@@ -66,6 +66,7 @@ class CutBatch {
   std::vector<geom::SweptVolume> sweeps_;
   std::vector<geom::FreshRegion> fresh_;
   std::vector<int> lines_;
+  glm::dvec3 lastHit_{0.0};  // where the last step asked removed, from its end tip
   CutBatchStats stats_;
 };
 

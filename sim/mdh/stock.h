@@ -107,11 +107,12 @@ class Stock {
   // Whether a cut of `solid` would remove material along some z grid line of the
   // stock as it would be after cuts of `cutBefore` (not made yet): `solid`'s
   // intervals, less theirs, reaching into the solid by more than kToolSlack.
-  // Only lines inside `region` (when given) are looked at, the one nearest `first`
-  // first (a step's end tip, where it most likely removes); stops at the first such line.
+  // Only lines inside `region` (when given) are looked at, outwards from the one
+  // nearest `first` (where it most likely removes); stops at the first such line and
+  // puts it in `hit` (x, y, and the middle of what it removes there) when given.
   bool removesMaterial(const geom::LineSolid& solid, const geom::FreshRegion* region,
-                       std::span<const geom::LineSolid* const> cutBefore,
-                       const glm::dvec3& first) const;
+                       std::span<const geom::LineSolid* const> cutBefore, const glm::dvec3& first,
+                       glm::dvec3* hit = nullptr) const;
   bool isSolid(const glm::dvec3& p) const;
   // Solid intervals (mm) along the grid line of `axis` through vertex indices
   // iu on axis (axis+1)%3 and iv on (axis+2)%3.

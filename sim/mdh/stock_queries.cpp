@@ -216,7 +216,7 @@ Overlap Stock::probe(const geom::LineSolid& solid, double tolerance) const {
 
 bool Stock::removesMaterial(const geom::LineSolid& solid, const geom::FreshRegion* region,
                             std::span<const geom::LineSolid* const> cutBefore,
-                            const glm::dvec3& first) const {
+                            const glm::dvec3& first, glm::dvec3* hit) const {
   geom::Aabb box = solid.bounds();
   if (region != nullptr) box = region->clip(box);
   if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z)) return false;
@@ -257,7 +257,10 @@ bool Stock::removesMaterial(const geom::LineSolid& solid, const geom::FreshRegio
       tool.swap(left);
     }
     for (const Span& t : tool)
-      if (t.hi - t.lo > kToolSlack) return true;
+      if (t.hi - t.lo > kToolSlack) {
+        if (hit != nullptr) *hit = {x, y, grid_.toMm(2, 0.5 * (t.lo + t.hi))};
+        return true;
+      }
     return false;
   };
   // Outwards from `first`, rows nearest it first and each row from its column out:

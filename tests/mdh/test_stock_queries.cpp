@@ -45,7 +45,12 @@ TEST(StockQueries, RemovesMaterialLooksPastCutsStillToBeMade) {
   Stock s(kStock, options(32));
   const SphereSolid hole({5, 4, 6}, 1.5);  // a dimple in the top face
   const glm::dvec3 centre{5, 4, 6};
-  EXPECT_TRUE(s.removesMaterial(hole, nullptr, {}, centre));
+  glm::dvec3 hit{-1.0};
+  EXPECT_TRUE(s.removesMaterial(hole, nullptr, {}, {4, 4, 6}, &hit));
+  EXPECT_DOUBLE_EQ(hit.x, 4.0);  // the line asked first removes: it is the one named
+  EXPECT_DOUBLE_EQ(hit.y, 4.0);
+  EXPECT_GT(hit.z, 6.0 - std::sqrt(1.5 * 1.5 - 1.0));  // inside the dimple below the top
+  EXPECT_LT(hit.z, 6.0);
   EXPECT_DOUBLE_EQ(s.volume(), 480.0);  // a question, not a cut
   // A cut not made yet that holds the dimple leaves it nothing to remove...
   const BoxSolid before({{3, 2, 4}, {7, 6, 7}});
