@@ -34,7 +34,7 @@ struct CheckArgs {
 };
 
 // A count from 0 to 256 (the cutting threads, 0: the machine's cores; the batch size).
-bool parseThreads(const std::string& text, int& out) {
+bool parseCount(const std::string& text, int& out) {
   if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string::npos)
     return false;
   out = std::stoi(text);
@@ -51,13 +51,13 @@ bool parseArgs(const Args& args, CheckArgs& out, std::ostream& err) {
       }
       (a == "--report" ? out.report : out.mesh) = args[++i];
     } else if (a == "--threads") {
-      if (i + 1 >= args.size() || !parseThreads(args[i + 1], out.threads)) {
+      if (i + 1 >= args.size() || !parseCount(args[i + 1], out.threads)) {
         err << "mdhd check: --threads needs a count from 0 (one per core) to 256\n" << kCheckUsage;
         return false;
       }
       ++i;
     } else if (a == "--batch") {
-      if (i + 1 >= args.size() || !parseThreads(args[i + 1], out.batch) || out.batch < 1) {
+      if (i + 1 >= args.size() || !parseCount(args[i + 1], out.batch) || out.batch < 1) {
         err << "mdhd check: --batch needs a count of steps from 1 (one by one) to 256\n"
             << kCheckUsage;
         return false;

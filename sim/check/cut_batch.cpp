@@ -6,11 +6,6 @@ namespace mdhd::check {
 
 CutBatch::CutBatch(int max_steps) : max_(std::max(1, max_steps)), cap_(max_) {}
 
-bool CutBatch::continues(const geom::ToolPart& part, const geom::ToolPose& from) const {
-  return !empty() && &part == part_ && poses_.back().tip == from.tip &&
-         poses_.back().axis == from.axis;
-}
-
 bool CutBatch::add(const mdh::Stock& stock, const geom::ToolPart& part, const geom::ToolPose& a,
                    const geom::ToolPose& b, geom::SweptVolume sweep, geom::FreshRegion fresh,
                    const glm::dvec3& direction, int line, bool ask) {

@@ -36,15 +36,14 @@ class CutBatch {
   explicit CutBatch(int max_steps);
 
   bool empty() const { return lines_.empty(); }
-  // Whether a step from `from` with `part` continues the pending chain.
-  bool continues(const geom::ToolPart& part, const geom::ToolPose& from) const;
 
   // Adds the step of `part` from `a` to `b` (same axis) with its sweep and fresh
   // region (geom::freshRegion: the chain's previous step ended at `a`). With `ask`,
   // returns whether it removes material: whether `sweep` reaches into the stock less
   // the pending sweeps along some z grid line (Stock::removesMaterial), what the step
   // cut on its own would find; without, false (its motion is known to cut already).
-  // The caller flushes first unless empty() or continues(part, a).
+  // The caller flushes first unless the step continues the pending chain (same part,
+  // starting at its last pose).
   bool add(const mdh::Stock& stock, const geom::ToolPart& part, const geom::ToolPose& a,
            const geom::ToolPose& b, geom::SweptVolume sweep, geom::FreshRegion fresh,
            const glm::dvec3& direction, int line, bool ask = true);

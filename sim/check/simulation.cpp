@@ -332,9 +332,12 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
   const bool fromLastCut = cut_end_ && cut_end_part_ == &step.parts.cutter &&
                            cut_end_->tip == a.tip && cut_end_->axis == a.axis;
   const bool translation = a.axis == step.b.pose.axis;
-  if (!(fromLastCut && translation && !rapid && !spindleOff) ||
-      !batch_.continues(step.parts.cutter, a))
-    flushCuts();
+  auto fresh = fromLastCut ? geom::freshRegion(step.parts.cutter, a, step.b.pose)
+                           : std::optional<geom::FreshRegion>();
+  // A step joins the batch when it continues the last cut (which a pending batch
+  // made: cut_end_ is its end) with the axis held; anything else is cut after it.
+  const bool batched = fresh && translation && !rapid && !spindleOff;
+  if (!batched) flushCuts();
   if (rapid || spindleOff) {
     // The removal itself is the collision: measure it before the material is gone.
     ScopeTimer timer(timing_.probe_ms);
@@ -358,15 +361,13 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
   }
   glm::dvec3 dir = a.axis + step.b.pose.axis;
   dir = glm::dot(dir, dir) > 1e-12 ? glm::normalize(dir) : step.b.pose.axis;
-  auto fresh = fromLastCut ? geom::freshRegion(step.parts.cutter, a, step.b.pose)
-                           : std::optional<geom::FreshRegion>();
   cut_end_.reset();
   if (m.tool != removal_tool_) closeToolRemoval(m.tool);
   if (translation) {
     cut_end_ = step.b.pose;
     cut_end_part_ = &step.parts.cutter;
   }
-  if (fresh && translation && !rapid && !spindleOff) {
+  if (batched) {
     {
       // Whether this step removes material is asked before its cut is made (the
       // batch's cuts come later), of the stock less the steps batched before it;

@@ -97,8 +97,10 @@ class Stock {
   // and nothing is returned. The slow path's choices (a new direction, a split plane,
   // RS's seed) depend on the order of the steps, the fast path's heights and
   // crossings only on the union of what they remove: a union of `steps` consecutive
-  // sweeps cut here leaves the stock those steps cut one by one would, and counts as
-  // that many steps. Costs a copy of the bricks it reaches, kept for the undo.
+  // sweeps cut here leaves the stock those steps cut one by one would (but for a
+  // crossing an edge gets from both ends, which the union may place elsewhere inside
+  // the edge: tests/mdh/test_batched_cuts.cpp), and counts as that many steps. Costs a
+  // copy of the bricks it reaches, kept for the undo.
   std::optional<CutResult> cutIfFast(const geom::LineSolid& solid, const glm::dvec3& tool_direction,
                                      const geom::FreshRegion* fresh, std::uint64_t steps);
   void setToolRadius(double mm) { toolRadius_ = mm; }
