@@ -38,12 +38,16 @@ class Mesher {
 
  private:
   void cube(const GridPoint& c);
+  // A cube whose corners' solidity is known (bit i: corner i). `owned`: the leaf
+  // hint_ owns all eight corners, so its crossings need no owner lookup.
+  void surfaceCube(const GridPoint& c, unsigned solid, bool owned);
+  void foreignColumn(const LeafInfo& l, GridPoint c);
   void square(const GridPoint& cubeMin, int face);
   bool solidFace(const LeafInfo& l, int faceId);
   void mergedFace(const LeafInfo& l, int faceId);
   void partialLeaf(const LeafInfo& l);
   void uniformLeaf(const LeafInfo& l);
-  double edgeT(const GridPoint& p, int axis, bool startSolid);
+  double edgeT(const GridPoint& p, int axis, bool startSolid, bool owned = false);
   LoopPoint crossingPoint(const GridPoint& p, int axis, double t) const;
   void emit(std::span<const LoopPoint> loop, bool exterior);
   void triangle(const LoopPoint& a, const LoopPoint& b, const LoopPoint& c, bool exterior);
@@ -60,10 +64,11 @@ class Mesher {
   std::vector<glm::dvec3> pts_;
   std::vector<std::uint8_t> masks_;
   std::vector<LoopPoint> rim_;
+  std::vector<std::uint8_t> column_;  // foreignColumn's corner solidity, column by column
 };
 
-double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid) {
-  const double x = view_.crossing(p, axis, hint_);
+double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid, bool owned) {
+  const double x = owned ? view_.crossingOwnedBy(hint_, p, axis) : view_.crossing(p, axis, hint_);
   double t = x - p[axis];
   if (!std::isfinite(t)) {
     // The edge's owner sees no surface here, the end's owner does: in practice a
@@ -115,12 +120,16 @@ void Mesher::cube(const GridPoint& c) {
   unsigned solid = 0;
   for (int i = 0; i < 8; ++i)
     if (view_.solid(cornerOf(c, i), hint_)) solid |= 1u << i;
+  surfaceCube(c, solid, false);
+}
+
+void Mesher::surfaceCube(const GridPoint& c, unsigned solid, bool owned) {
   if (solid == 0 || solid == 0xffu) return;
   const auto& edges = cubeEdges();
   double t[12];
   for (int e = 0; e < 12; ++e) {
     const bool s0 = (solid >> edges[e].from) & 1u, s1 = (solid >> edges[e].to) & 1u;
-    t[e] = s0 != s1 ? edgeT(cornerOf(c, edges[e].from), edges[e].axis, s0) : 0.5;
+    t[e] = s0 != s1 ? edgeT(cornerOf(c, edges[e].from), edges[e].axis, s0, owned) : 0.5;
   }
   const CubeLoops loops = cubeLoops(solid, t);
   ++stats_.surfaceCubes;
@@ -291,6 +300,36 @@ void Mesher::uniformLeaf(const LeafInfo& l) {
   }
 }
 
+// A column of cubes on the leaf's far side: some corners belong to the neighbours, and
+// their columns may hold the surface at any level. Each corner column is walked once
+// (its owner kept from vertex to vertex) instead of eight owner lookups per cube of
+// the column, and only the cubes whose corners disagree are meshed.
+void Mesher::foreignColumn(const LeafInfo& l, GridPoint c) {
+  const int a = l.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  const int levels = l.hi[a] - l.lo[a] + 1;
+  column_.resize(static_cast<std::size_t>(4 * levels));
+  for (int d = 0; d < 4; ++d) {
+    GridPoint p = c;
+    p[u] += d & 1;
+    p[v] += d >> 1;
+    int owner = hint_;
+    for (int k = 0; k < levels; ++k) {
+      p[a] = l.lo[a] + k;
+      column_[d * levels + k] = view_.solidWalk(p, owner);
+    }
+  }
+  for (int j = 0; j + 1 < levels; ++j) {
+    unsigned solid = 0;
+    for (int i = 0; i < 8; ++i) {
+      const int d = ((i >> u) & 1) + 2 * ((i >> v) & 1);
+      if (column_[d * levels + j + ((i >> a) & 1)]) solid |= 1u << i;
+    }
+    if (solid == 0 || solid == 0xffu) continue;
+    c[a] = l.lo[a] + j;
+    surfaceCube(c, solid, false);
+  }
+}
+
 void Mesher::partialLeaf(const LeafInfo& l) {
   const int a = l.axis, u = (a + 1) % 3, v = (a + 2) % 3;
   const GridPoint& n = view_.cubes();
@@ -300,27 +339,38 @@ void Mesher::partialLeaf(const LeafInfo& l) {
   GridPoint c{};
   for (c[v] = l.lo[v]; c[v] < l.hi[v]; ++c[v])
     for (c[u] = l.lo[u]; c[u] < l.hi[u]; ++c[u]) {
+      if ((c[u] + 1 == l.hi[u] && l.hi[u] < n[u]) || (c[v] + 1 == l.hi[v] && l.hi[v] < n[v])) {
+        foreignColumn(l, c);
+        continue;
+      }
       int nmin = levels, nmax = 0;
+      int counts[4];  // solid vertices of the columns at u + (d & 1), v + (d >> 1)
       for (int d = 0; d < 4; ++d) {
         const int k = view_.columnSolidCount(hint_, c[u] + (d & 1), c[v] + (d >> 1));
+        counts[d] = k;
         nmin = std::min(nmin, k);
         nmax = std::max(nmax, k);
       }
-      int j0 = 0, j1 = cubesA - 1;
-      const bool sideForeign =
-          (c[u] + 1 == l.hi[u] && l.hi[u] < n[u]) || (c[v] + 1 == l.hi[v] && l.hi[v] < n[v]);
-      if (!sideForeign) {
-        if (l.sign > 0) {
-          j0 = std::max(0, nmin - 1);
-          j1 = std::min(cubesA - 1, nmax - 1);
-        } else {
-          j0 = std::max(0, levels - nmax - 1);
-          j1 = std::min(cubesA - 1, levels - nmin - 1);
-        }
-      }
+      // Only cubes between the lowest and the highest column's surface can hold it.
+      const int j0 = l.sign > 0 ? std::max(0, nmin - 1) : std::max(0, levels - nmax - 1);
+      const int j1 =
+          l.sign > 0 ? std::min(cubesA - 1, nmax - 1) : std::min(cubesA - 1, levels - nmin - 1);
+      // Cubes below the leaf's top layer, away from its far sides: the leaf owns
+      // all eight corners, whose solidity the four columns' counts give.
+      const int ownTop = topForeign ? cubesA - 2 : cubesA - 1;
       for (int j = j0; j <= j1; ++j) {
         c[a] = l.lo[a] + j;
-        cube(c);
+        if (j > ownTop) {
+          cube(c);
+          continue;
+        }
+        unsigned solid = 0;
+        for (int i = 0; i < 8; ++i) {
+          const int du = (i >> u) & 1, dv = (i >> v) & 1, level = j + ((i >> a) & 1);
+          const int k = counts[du + 2 * dv];
+          if (l.sign > 0 ? level < k : level >= levels - k) solid |= 1u << i;
+        }
+        surfaceCube(c, solid, true);
       }
       if (topForeign && !(j0 <= cubesA - 1 && cubesA - 1 <= j1)) {  // not met above
         c[a] = l.hi[a] - 1;

@@ -132,7 +132,11 @@ int StockView::columnSolidCount(int leaf, int pu, int pv) const {
 }
 
 double StockView::crossing(const GridPoint& p, int axis, int hint) const {
-  const int owner = ownerOf(p, hint);
+  return crossingOwnedBy(ownerOf(p, hint), p, axis);
+}
+
+double StockView::crossingOwnedBy(int owner, const GridPoint& p, int axis) const {
+  const int hint = owner;
   const double x = crossingIn(owner, p, axis);
   if (!std::isnan(x)) return x;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;

@@ -65,6 +65,8 @@ class StockView {
   // edge (owners of the cubes beside it, in a fixed order) that has one; NaN
   // if none has.
   double crossing(const GridPoint& p, int axis, int hint = -1) const;
+  // The same when p's owner is known (the mesher walking a leaf's own cubes).
+  double crossingOwnedBy(int owner, const GridPoint& p, int axis) const;
   // Number of solid vertices in the column of a partial leaf through (pu, pv)
   // (grid coordinates on the leaf's u and v axes).
   int columnSolidCount(int leaf, int pu, int pv) const;
