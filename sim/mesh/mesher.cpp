@@ -58,7 +58,17 @@ class Mesher {
   const StockView& view_;
   MeshSink& sink_;
   MeshStats& stats_;
-  int hint_ = -1;
+  // The owner of a vertex: the leaf being meshed, else the last other owner met
+  // (the leaf across a face owns runs of vertices), else a search.
+  int ownerOf(const GridPoint& p) {
+    if (view_.owns(hint_, p)) return hint_;
+    foreign_ = view_.ownerOf(p, foreign_);
+    return foreign_;
+  }
+  bool solidAt(const GridPoint& p) { return view_.solidOwnedBy(ownerOf(p), p); }
+
+  int hint_ = -1;     // the leaf being meshed
+  int foreign_ = -1;  // the last vertex owner other than hint_
   std::uint64_t nextInner_ = 0;
   std::vector<std::array<int, 3>> tris_;
   std::vector<glm::dvec3> pts_;
@@ -68,7 +78,7 @@ class Mesher {
 };
 
 double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid, bool owned) {
-  const double x = owned ? view_.crossingOwnedBy(hint_, p, axis) : view_.crossing(p, axis, hint_);
+  const double x = view_.crossingOwnedBy(owned ? hint_ : ownerOf(p), p, axis);
   double t = x - p[axis];
   if (!std::isfinite(t)) {
     // The edge's owner sees no surface here, the end's owner does: in practice a
@@ -119,7 +129,7 @@ void Mesher::triangle(const LoopPoint& a, const LoopPoint& b, const LoopPoint& c
 void Mesher::cube(const GridPoint& c) {
   unsigned solid = 0;
   for (int i = 0; i < 8; ++i)
-    if (view_.solid(cornerOf(c, i), hint_)) solid |= 1u << i;
+    if (solidAt(cornerOf(c, i))) solid |= 1u << i;
   surfaceCube(c, solid, false);
 }
 
@@ -152,7 +162,7 @@ void Mesher::square(const GridPoint& cubeMin, int faceId) {
   const auto& edges = cubeEdges();
   unsigned solid = 0;
   for (int corner : face.corners)
-    if (view_.solid(cornerOf(cubeMin, corner), hint_)) solid |= 1u << corner;
+    if (solidAt(cornerOf(cubeMin, corner))) solid |= 1u << corner;
   if (solid == 0) return;
   double t[12] = {};
   // Items counter-clockwise from outside: corner i, then the crossing on edge i.
@@ -209,7 +219,7 @@ bool Mesher::solidFace(const LeafInfo& l, int faceId) {
   p[a] = face.side == 0 ? l.lo[a] : l.hi[a];
   for (p[v] = l.lo[v]; p[v] <= l.hi[v]; ++p[v])
     for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u])
-      if (!view_.solid(p, hint_)) return false;
+      if (!solidAt(p)) return false;
   return true;
 }
 

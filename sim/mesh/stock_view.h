@@ -59,6 +59,8 @@ class StockView {
     owner = ownerOf(p, owner);
     return solidIn(owner, p);
   }
+  // The same when p's owner is known.
+  bool solidOwnedBy(int owner, const GridPoint& p) const { return solidIn(owner, p); }
   // The surface crossing on the grid edge from p along `axis` as its owner
   // stores it: an absolute grid coordinate. If the owner has none there
   // (cells disagree about an end), the first of the other leaves around the
