@@ -60,12 +60,12 @@ class Mesher {
   MeshStats& stats_;
   // The owner of a vertex: the leaf being meshed, else the last other owner met
   // (the leaf across a face owns runs of vertices), else a search.
-  int ownerOf(const GridPoint& p) {
+  int vertexOwner(const GridPoint& p) {
     if (view_.owns(hint_, p)) return hint_;
     foreign_ = view_.ownerOf(p, foreign_);
     return foreign_;
   }
-  bool solidAt(const GridPoint& p) { return view_.solidOwnedBy(ownerOf(p), p); }
+  bool solidAt(const GridPoint& p) { return view_.solidOwnedBy(vertexOwner(p), p); }
 
   int hint_ = -1;     // the leaf being meshed
   int foreign_ = -1;  // the last vertex owner other than hint_
@@ -78,7 +78,7 @@ class Mesher {
 };
 
 double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid, bool owned) {
-  const double x = view_.crossingOwnedBy(owned ? hint_ : ownerOf(p), p, axis);
+  const double x = view_.crossingOwnedBy(owned ? hint_ : vertexOwner(p), p, axis);
   double t = x - p[axis];
   if (!std::isfinite(t)) {
     // The edge's owner sees no surface here, the end's owner does: in practice a
