@@ -136,7 +136,6 @@ double StockView::crossing(const GridPoint& p, int axis, int hint) const {
 }
 
 double StockView::crossingOwnedBy(int owner, const GridPoint& p, int axis) const {
-  const int hint = owner;
   const double x = crossingIn(owner, p, axis);
   if (!std::isnan(x)) return x;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -145,7 +144,7 @@ double StockView::crossingOwnedBy(int owner, const GridPoint& p, int axis) const
     c[u] -= d & 1;
     c[v] -= d >> 1;
     if (c[u] < 0 || c[v] < 0) continue;
-    const int other = ownerOf(c, hint);
+    const int other = ownerOf(c, owner);
     if (other == owner) continue;
     const double y = crossingIn(other, p, axis);
     if (!std::isnan(y)) return y;
