@@ -6,7 +6,9 @@
 // grid spacing in the same run (peers/freecad/run_pathsim.py, hmap_from_stl.py).
 //
 //   bench_check [--densities 5,10,20] [--no-freecad] [--smoke] [--threads N] [--only 3|5]
-//               [--passes K] [--first-pass J] [--batch B]
+//               [--passes K] [--first-pass J] [--batch B] [--plain]
+// --plain: plain heightmaps instead of 3-way ones (job option three_way false: no
+// crossings on the edges across the map's direction, so no x and y lines to ask);
 // --batch: feed steps cut at once (check::SimulationOptions::batch_steps; 1: one by one);
 // --threads: threads cutting and meshing the stock (default 1); --only: just the 3-axis
 // or the 5-axis dome; --passes: only K zigzag passes (a slice for profiling; no FreeCAD
@@ -97,13 +99,14 @@ double processCpuSeconds() {
 }
 
 // One run in this process: simulation, then the mesh into the error sink.
-nlohmann::json simulate(const Case& c, double density, int threads, int batch) {
+nlohmann::json simulate(const Case& c, double density, int threads, int batch, bool plain) {
   const kin::Kinematics kin(c.machine);
   const std::vector<geom::Tool> tools{ballTool()};
   check::SimulationOptions options;
   options.density = density;
   options.threads = threads;
   if (batch > 0) options.batch_steps = batch;
+  options.three_way = !plain;
   const Clock::time_point t0 = Clock::now();
   check::Simulation sim(kin, tools, c.stock, {}, options);
   gcode::InterpreterConfig config;
@@ -153,7 +156,7 @@ nlohmann::json simulate(const Case& c, double density, int threads, int batch) {
 }
 
 // The run in a child process, so that its peak memory is its own.
-nlohmann::json simulateInChild(const Case& c, double density, int threads, int batch) {
+nlohmann::json simulateInChild(const Case& c, double density, int threads, int batch, bool plain) {
   int fds[2];
   if (pipe(fds) != 0) return {{"error", "pipe"}};
   const pid_t pid = fork();
@@ -161,7 +164,7 @@ nlohmann::json simulateInChild(const Case& c, double density, int threads, int b
     close(fds[0]);
     std::string text;
     try {
-      text = simulate(c, density, threads, batch).dump();
+      text = simulate(c, density, threads, batch, plain).dump();
     } catch (const std::exception& e) {
       text = nlohmann::json{{"error", e.what()}}.dump();
     }
@@ -243,7 +246,7 @@ std::vector<double> parseDensities(const std::string& s) {
 
 int main(int argc, char** argv) {
   std::vector<double> densities{5, 10, 20};
-  bool withFreecad = true, smoke = false;
+  bool withFreecad = true, smoke = false, plain = false;
   int threads = 1, only = 0, passes = -1, first = 0, batch = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -263,10 +266,13 @@ int main(int argc, char** argv) {
       first = std::atoi(argv[++i]);
     else if (a == "--batch" && i + 1 < argc)
       batch = std::atoi(argv[++i]);
+    else if (a == "--plain")
+      plain = true;
     else {
-      std::fprintf(stderr,
-                   "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
-                   "[--threads N] [--only 3|5] [--passes K] [--first-pass J] [--batch B]\n");
+      std::fprintf(
+          stderr,
+          "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
+          "[--threads N] [--only 3|5] [--passes K] [--first-pass J] [--batch B] [--plain]\n");
       return 2;
     }
   }
@@ -310,7 +316,7 @@ int main(int argc, char** argv) {
   int failures = 0;
   for (const Case& c : cases)
     for (double d : densities) {
-      const nlohmann::json r = simulateInChild(c, d, threads, batch);
+      const nlohmann::json r = simulateInChild(c, d, threads, batch, plain);
       if (r.contains("error")) {
         std::printf("%-12s %4g error: %s\n", c.name.c_str(), d,
                     r["error"].get<std::string>().c_str());
