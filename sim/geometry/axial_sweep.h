@@ -10,6 +10,7 @@
 // the line), over the s in [0, L] with rho(s) <= the widest radius. The minimum is of
 // a convex function of s; each rising piece's stationary point has a closed form, so
 // one pass over the rising pieces finds it (no candidate enumeration, no allocation).
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -55,5 +56,13 @@ struct AxialMove {
 // A line within `linearTol` (mm) outside the widest radius still runs along the wall.
 bool axialExtent(const AxialProfile& profile, const AxialMove& move, double q1, double q2,
                  double linearTol, double& lo, double& hi);
+
+// axialExtent for n lines of one row (offsets q1[i], q2), without a branch per line: what
+// a line's answer takes is selected, not branched to, so a row runs at the arithmetic's
+// pace. hit[i], lo[i], hi[i] are axialExtent's result and extent, to the bit (lo and hi
+// are meaningless where hit[i] is 0). For profiles of up to kRowRises rises.
+inline constexpr std::size_t kRowRises = 4;
+void axialExtentRow(const AxialProfile& profile, const AxialMove& move, const double* q1, double q2,
+                    std::size_t n, double linearTol, double* lo, double* hi, unsigned char* hit);
 
 }  // namespace mdhd::geom

@@ -28,6 +28,11 @@ class CylinderSolid final : public LineSolid {
   void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const override {
     solid_.lineIntervals(axis, u, v, out);
   }
+  void rowIntervals(int axis, std::span<const double> us, double v, std::vector<Interval>& out,
+                    std::span<std::size_t> ends) const override {
+    solid_.rowIntervals(axis, us, v, out, ends);
+  }
+  bool rowsPay(int axis) const override { return solid_.rowsPay(axis); }
 
  private:
   SweptVolume solid_;  // a one-piece part standing at one pose

@@ -66,6 +66,12 @@ class SweptVolume final : public LineSolid {
   // square to it (cross_sweep.h) in closed form; every other line and body goes
   // through the general solver (section_solver.h).
   void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const override;
+  // The same answers. When every body stands on the lines' axis (a 3-axis tool's z
+  // columns), body by body over the row: each body solves the lines its box holds in
+  // one branch-free pass (axialExtentRow); otherwise line by line.
+  void rowIntervals(int axis, std::span<const double> us, double v, std::vector<Interval>& out,
+                    std::span<std::size_t> ends) const override;
+  bool rowsPay(int axis) const override { return axis >= 0 && axis <= 2 && rowKernel_[axis]; }
   // Every body on one grid axis, translated: the coordinates where each body's
   // section is its widest disk at every point of its move (profile from riseTop to
   // top), intersected over the bodies that reach there.
@@ -119,6 +125,8 @@ class SweptVolume final : public LineSolid {
   void intervals(int axis, double u, double v, bool general, std::vector<Interval>& out) const;
   // `general`: the section solver's candidate enumeration (the reference) instead of
   // its band form.
+  // Heights [lo, hi] on a body's axis (on grid axis `axis`) as coordinates on that axis.
+  static Interval axialInterval(const SweptBody& body, int axis, double lo, double hi);
   bool bodyInterval(const SweptBody& body, int axis, double u, double v, bool general,
                     Interval& out) const;
   bool crossBodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
@@ -131,6 +139,7 @@ class SweptVolume final : public LineSolid {
   std::vector<AxialProfile> profiles_;
   Aabb bounds_;
   double errorBound_ = 0.0;
+  bool rowKernel_[3] = {false, false, false};  // every body solved by axialExtentRow on axis a
 };
 
 // How many equal segments SweptVolume::between uses for these arguments.

@@ -114,19 +114,16 @@ IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid,
 
 IntervalCache::~IntervalCache() = default;
 
-void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const {
-  thread_local std::vector<geom::Interval> buf;
-  buf.clear();
-  const int u = axisU(axis), v = axisV(axis);
-  solid_.lineIntervals(axis, grid_.toMm(u, iu), grid_.toMm(v, iv), buf);
+void IntervalCache::store(std::span<const geom::Interval> mm, int axis,
+                          LineStore::Slot& slot) const {
   const auto toSpan = [&](const geom::Interval& i) {
     return Span{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
   };
-  if (buf.size() <= std::size(slot.inline_)) {
+  if (mm.size() <= std::size(slot.inline_)) {
     // The usual answer (a convex tool: one interval, or none) is cleaned in the
     // slot itself, without the vector.
     std::size_t n = 0;
-    for (const geom::Interval& i : buf) {
+    for (const geom::Interval& i : mm) {
       const Span s = toSpan(i);
       if (s.hi > s.lo) slot.inline_[n++] = s;  // drops NaN and inverted intervals
     }
@@ -136,7 +133,7 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
   }
   thread_local std::vector<Span> spans;
   spans.clear();
-  for (const geom::Interval& i : buf) {
+  for (const geom::Interval& i : mm) {
     const Span s = toSpan(i);
     if (s.hi > s.lo) spans.push_back(s);  // drops NaN and inverted intervals
   }
@@ -152,6 +149,65 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
   slot.data = heap.get();
   const std::lock_guard lock(store_->overflowMutex_);
   store_->overflow_.push_back(std::move(heap));
+}
+
+void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const {
+  thread_local std::vector<geom::Interval> buf;
+  buf.clear();
+  const int u = axisU(axis), v = axisV(axis);
+  solid_.lineIntervals(axis, grid_.toMm(u, iu), grid_.toMm(v, iv), buf);
+  store(buf, axis, slot);
+}
+
+void IntervalCache::fillRow(int axis, int iv, std::span<const int> ius) const {
+  if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
+  const Lines& l = lines_[axis];
+  if (iv < l.vlo || iv > l.vhi) return;
+  if (l.band == 1 && band_.holds(iv)) iv = band_.lo;
+  struct Claimed {
+    std::size_t slot;
+    std::uint32_t was;  // its state before the claim, restored if the solid throws
+  };
+  thread_local std::vector<Claimed> claimed;
+  thread_local std::vector<double> us;
+  thread_local std::vector<geom::Interval> out;
+  thread_local std::vector<std::size_t> ends;
+  claimed.clear();
+  us.clear();
+  const std::uint32_t busy = stamp_ - 1;
+  for (int iu : ius) {
+    if (iu < l.ulo || iu > l.uhi) continue;
+    if (l.band == 0 && band_.holds(iu)) iu = band_.lo;  // ascending still; repeats are claimed
+    const std::size_t i =
+        l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
+    std::atomic<std::uint32_t>& s = store_->states_[i];
+    std::uint32_t state = s.load(std::memory_order_acquire);
+    if (state == stamp_ || state == busy) continue;
+    if (shared_) {
+      if (!s.compare_exchange_strong(state, busy, std::memory_order_acquire)) continue;
+    } else {
+      s.store(busy, std::memory_order_relaxed);
+    }
+    claimed.push_back({i, state});
+    us.push_back(grid_.toMm(axisU(axis), iu));
+  }
+  if (claimed.empty()) return;
+  out.clear();
+  ends.resize(claimed.size());
+  try {
+    solid_.rowIntervals(axis, us, grid_.toMm(axisV(axis), iv), out, ends);
+    std::size_t from = 0;
+    for (std::size_t j = 0; j < claimed.size(); ++j) {
+      store(std::span<const geom::Interval>(out.data() + from, ends[j] - from), axis,
+            store_->slots_[claimed[j].slot]);
+      from = ends[j];
+    }
+  } catch (...) {
+    for (const Claimed& c : claimed)
+      store_->states_[c.slot].store(c.was, std::memory_order_release);  // anyone may retry
+    throw;
+  }
+  for (const Claimed& c : claimed) store_->states_[c.slot].store(stamp_, std::memory_order_release);
 }
 
 std::size_t IntervalCache::queries() const {

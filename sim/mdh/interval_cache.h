@@ -84,6 +84,13 @@ class IntervalCache {
     const LineStore::Slot& slot = store_->slots_[i];
     return std::span<const Span>(slot.data, slot.count);
   }
+  // Fills the lines along `axis` through (ius[i], iv), ius ascending, that no one
+  // has filled this step, with one LineSolid::rowIntervals call (cheaper per line
+  // than asking one by one); line() then finds them filled. Lines outside the
+  // solid's box, and ones another thread is filling, are left to line().
+  void fillRow(int axis, int iv, std::span<const int> ius) const;
+  // Whether fillRow along `axis` is cheaper per line than line() (LineSolid::rowsPay).
+  bool rowsPay(int axis) const { return solid_.rowsPay(axis); }
   // The solid's prism band (LineSolid::prismBand) as grid levels on `axis`: lines
   // square to it at levels in (lo, hi] are the line at lo. axis -1: none.
   struct PrismBand {
@@ -109,6 +116,8 @@ class IntervalCache {
   [[noreturn]] static void wrongAxis();
   void fillOnce(int axis, int iu, int iv, std::size_t i) const;
   void fill(int axis, int iu, int iv, LineStore::Slot& slot) const;
+  // Stores one line's intervals (mm) in its slot as grid units, snapped and merged.
+  void store(std::span<const geom::Interval> mm, int axis, LineStore::Slot& slot) const;
 
   const GridSpec& grid_;
   const geom::LineSolid& solid_;

@@ -2,6 +2,11 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
+#include <set>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -24,10 +29,19 @@ class CountingSolid : public geom::LineSolid {
     ++calls;
     inner_.lineIntervals(axis, u, v, out);
   }
+  // Rows go to the inner solid's own row form (a sweep's body-by-body pass), each
+  // line counted as a call.
+  void rowIntervals(int axis, std::span<const double> us, double v,
+                    std::vector<geom::Interval>& out, std::span<std::size_t> ends) const override {
+    calls += static_cast<int>(us.size());
+    ++rows;
+    inner_.rowIntervals(axis, us, v, out, ends);
+  }
   bool prismBand(int& axis, double& lo, double& hi) const override {
     return inner_.prismBand(axis, lo, hi);
   }
   mutable std::atomic<int> calls{0};
+  mutable std::atomic<int> rows{0};
 
  private:
   const geom::LineSolid& inner_;
@@ -199,6 +213,93 @@ TEST(IntervalCache, LinesInTheToolsPrismBandShareOneQueryAndMatchTheirOwn) {
   // All but the first of the band's levels cost nothing.
   const std::size_t across = static_cast<std::size_t>(t.points(0) + t.points(1));
   EXPECT_EQ(cache.queries(), lines - static_cast<std::size_t>(band.hi - band.lo) * across);
+}
+
+// A chain of short moves of a vertical ball, as a 3-axis batch cuts it.
+geom::SweptVolume ballChain() {
+  const geom::ToolPart part = geom::makeToolPart(
+      geom::testing::makeTool(geom::ToolShape::kBall, 2.0, 3.0), geom::ToolPartKind::kCutter);
+  const glm::dvec3 z(0, 0, 1);
+  std::vector<geom::ToolPose> poses;
+  for (int j = 0; j <= 8; ++j)
+    poses.push_back({{3.0 + 0.31 * j, 3.7 + 0.02 * j * j, 2.0 - 0.05 * j + 0.01 * j * j}, z});
+  return geom::SweptVolume::chainOfTranslations(part, poses);
+}
+
+bool sameSpans(std::span<const Span> a, std::span<const Span> b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Span)) == 0;
+}
+
+TEST(IntervalCache, ARowFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked) {
+  const GridSpec g = grid();
+  const geom::SweptVolume sweep = ballChain();
+  for (int mode = 0; mode < 6; ++mode) {
+    const int axis = mode % 3;
+    CountingSolid counting(sweep);
+    IntervalCache rows(g, counting), single(g, sweep);
+    rows.setShared(mode < 3);  // one thread's cache claims its lines without atomics
+    const GridBox& t = rows.touched();
+    const int u = axisU(axis), v = axisV(axis);
+    // Every other line of each row, and one row twice: the second fill asks nothing.
+    std::size_t asked = 0;
+    for (int iv = t.lo[v] - 1; iv <= t.hi[v] + 1; ++iv) {
+      std::vector<int> ius;
+      for (int iu = t.lo[u] - 2; iu <= t.hi[u] + 2; iu += 2) ius.push_back(iu);
+      rows.fillRow(axis, iv, ius);
+      if (iv == t.lo[v] + 3) rows.fillRow(axis, iv, ius);
+    }
+    const int filled = counting.calls;
+    EXPECT_GT(counting.rows, 0);
+    // Lines in the prism band are their band's first level's (x lines: on v, y: on u).
+    const IntervalCache::PrismBand& band = rows.prismBand();
+    ASSERT_EQ(band.axis, 2);  // the test is of lines in the band too
+    const auto key = [&](int iu, int iv) {
+      if (band.axis == u && band.holds(iu)) iu = band.lo;
+      if (band.axis == v && band.holds(iv)) iv = band.lo;
+      return std::pair(iu, iv);
+    };
+    std::set<std::pair<int, int>> known;
+    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
+      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu)
+        if ((iu - (t.lo[u] - 2)) % 2 == 0) known.insert(key(iu, iv)), ++asked;
+    EXPECT_EQ(static_cast<std::size_t>(filled), known.size());  // each once, none outside
+    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
+      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu) {
+        const int before = counting.calls;
+        const auto got = rows.line(axis, iu, iv);
+        // Lines of the fill cost nothing more; the others one query each.
+        EXPECT_EQ(counting.calls - before, known.insert(key(iu, iv)).second ? 1 : 0)
+            << axis << " " << iu << " " << iv;
+        EXPECT_TRUE(sameSpans(got, single.line(axis, iu, iv))) << axis << " " << iu << " " << iv;
+      }
+    EXPECT_LE(known.size(), asked * 2);
+    EXPECT_EQ(rows.queries(), single.queries());
+  }
+}
+
+TEST(IntervalCache, RowFillsFromTwoThreadsShareTheLinesAndAgree) {
+  const GridSpec g = grid();
+  const geom::SweptVolume sweep = ballChain();
+  CountingSolid counting(sweep);
+  IntervalCache shared(g, counting), single(g, sweep);
+  const GridBox& t = shared.touched();
+  auto work = [&](int first) {
+    for (int round = 0; round < 2; ++round)
+      for (int iv = t.lo[1]; iv <= t.hi[1]; ++iv) {
+        std::vector<int> ius;
+        for (int iu = t.lo[0] + (first + iv + round) % 3; iu <= t.hi[0]; ++iu) ius.push_back(iu);
+        shared.fillRow(2, iv, ius);
+        for (int iu = t.lo[0]; iu <= t.hi[0]; iu += 5) shared.line(2, iu, iv);
+      }
+  };
+  std::thread a(work, 0), b(work, 1);
+  a.join();
+  b.join();
+  std::size_t lines = 0;
+  for (int iv = t.lo[1]; iv <= t.hi[1]; ++iv)
+    for (int iu = t.lo[0]; iu <= t.hi[0]; ++iu, ++lines)
+      EXPECT_TRUE(sameSpans(shared.line(2, iu, iv), single.line(2, iu, iv))) << iu << " " << iv;
+  EXPECT_EQ(counting.calls, static_cast<int>(lines));  // every line computed exactly once
 }
 
 }  // namespace
