@@ -176,9 +176,14 @@ template <Rises R>
 
 // One clone for AVX2 machines (four lines per instruction) and one for any
 // x86-64, chosen when the program loads. No FMA: it would round differently.
-__attribute__((target_clones("avx2", "default"))) void axialExtentRow(
-    const AxialProfile& profile, const AxialMove& move, const double* q1, double q2, std::size_t n,
-    double linearTol, double* lo, double* hi, unsigned char* hit) {
+#if defined(MDHD_ROW_CLONES) && defined(__x86_64__)
+#define MDHD_ROW_TARGETS __attribute__((target_clones("avx2", "default")))
+#else
+#define MDHD_ROW_TARGETS
+#endif
+MDHD_ROW_TARGETS void axialExtentRow(const AxialProfile& profile, const AxialMove& move,
+                                     const double* q1, double q2, std::size_t n, double linearTol,
+                                     double* lo, double* hi, unsigned char* hit) {
   if (profile.rises.empty())
     rowOf<Rises::kNone>(profile, move, q1, q2, n, linearTol, lo, hi, hit);
   else if (profile.rises.size() == 1 && profile.rises[0].sphere)
