@@ -241,7 +241,6 @@ TEST(IntervalCache, ARowFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked)
     const GridBox& t = rows.touched();
     const int u = axisU(axis), v = axisV(axis);
     // Every other line of each row, and one row twice: the second fill asks nothing.
-    std::size_t asked = 0;
     for (int iv = t.lo[v] - 1; iv <= t.hi[v] + 1; ++iv) {
       std::vector<int> ius;
       for (int iu = t.lo[u] - 2; iu <= t.hi[u] + 2; iu += 2) ius.push_back(iu);
@@ -261,7 +260,7 @@ TEST(IntervalCache, ARowFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked)
     std::set<std::pair<int, int>> known;
     for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
       for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu)
-        if ((iu - (t.lo[u] - 2)) % 2 == 0) known.insert(key(iu, iv)), ++asked;
+        if ((iu - (t.lo[u] - 2)) % 2 == 0) known.insert(key(iu, iv));
     EXPECT_EQ(static_cast<std::size_t>(filled), known.size());  // each once, none outside
     for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
       for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu) {
@@ -272,7 +271,6 @@ TEST(IntervalCache, ARowFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked)
             << axis << " " << iu << " " << iv;
         EXPECT_TRUE(sameSpans(got, single.line(axis, iu, iv))) << axis << " " << iu << " " << iv;
       }
-    EXPECT_LE(known.size(), asked * 2);
     EXPECT_EQ(rows.queries(), single.queries());
   }
 }
