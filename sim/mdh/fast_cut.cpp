@@ -308,6 +308,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   // the intervals' snapping (1e-9) and rounding against the solid's bounds.
   constexpr double kMargin = 1e-6;
   const double below = up ? cache.lowest(2) - kMargin : cache.highest(2) + kMargin;
+  const auto underTool = [&](double h) { return up ? h <= below : h >= below; };
   const bool rowFill = a == 2 && cache.rowsPay(a);
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv) {
     if (rowFill) {
@@ -316,7 +317,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
       s.rowLines.clear();
       for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
         const double h = cols.at(cu - box.lo[u], cv - box.lo[v]);
-        if (!(up ? h <= below : h >= below)) s.rowLines.push_back(cu);
+        if (!underTool(h)) s.rowLines.push_back(cu);
       }
       if (s.rowLines.size() > 1) cache.fillRow(a, cv, s.rowLines);
     }
@@ -324,7 +325,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
       const double h = cols.at(iu, iv);
       // An empty column of a z map has nothing to lose: no need to ask for its line.
-      if (a == 2 && (up ? h <= below : h >= below)) continue;
+      if (a == 2 && underTool(h)) continue;
       const auto tool = cache.line(a, cu, cv);
       if (tool.empty() && a == 2) continue;
       // In a z map, most columns under the tool are not reached below their
