@@ -6,6 +6,8 @@
 // s de +- sqrt(Q(s)), Q(s) = R^2(zeta0 - s zd) - (h0 - s dn)^2, a quadratic in s.
 // The extremes over the s the piece's height range allows are at the two ends of that
 // range or where the chord's end turns (one quadratic): no candidate enumeration.
+#include <cstddef>
+
 namespace mdhd::geom {
 
 // A piece: x^2 + y^2 <= alpha + beta z + gamma z^2 for z0 <= z <= z1.
@@ -25,5 +27,12 @@ struct CrossMove {
 // false if it misses. `linearTol` (mm) and `quadricTol` (mm^2) keep grazing ends.
 bool crossExtent(const PieceQuadric& p, const CrossMove& m, double zeta0, double h0,
                  double linearTol, double quadricTol, double& lo, double& hi);
+
+// crossExtent for n lines at heights zeta0[i] and distances h0[i], without a branch per
+// line: hit[i], lo[i], hi[i] are crossExtent's result and extent, to the bit (lo and hi
+// are meaningless where hit[i] is 0).
+void crossExtentRow(const PieceQuadric& p, const CrossMove& m, const double* zeta0,
+                    const double* h0, std::size_t n, double linearTol, double quadricTol,
+                    double* lo, double* hi, unsigned char* hit);
 
 }  // namespace mdhd::geom

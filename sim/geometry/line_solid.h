@@ -45,6 +45,22 @@ class LineSolid {
     (void)axis;
     return false;
   }
+  // Many lines along `axis` at (us[i], vs[i]), in any order: appends line i's
+  // intervals, exactly as lineIntervals gives them, to `out` and sets ends[i] to out's
+  // size after them (ends.size() == us.size() == vs.size()). This default asks line
+  // by line.
+  virtual void linesIntervals(int axis, std::span<const double> us, std::span<const double> vs,
+                              std::vector<Interval>& out, std::span<std::size_t> ends) const {
+    for (std::size_t i = 0; i < us.size(); ++i) {
+      lineIntervals(axis, us[i], vs[i], out);
+      ends[i] = out.size();
+    }
+  }
+  // Whether linesIntervals along `axis` is cheaper per line than lineIntervals.
+  virtual bool linesPay(int axis) const {
+    (void)axis;
+    return false;
+  }
   // A prism band: a grid axis `axis` and a range [lo, hi] of coordinates on it over
   // which every section square to it is the same (a tool on a grid axis translated,
   // along its cylinder). Lines square to `axis` that differ only in their coordinate

@@ -33,6 +33,11 @@ class CylinderSolid final : public LineSolid {
     solid_.rowIntervals(axis, us, v, out, ends);
   }
   bool rowsPay(int axis) const override { return solid_.rowsPay(axis); }
+  void linesIntervals(int axis, std::span<const double> us, std::span<const double> vs,
+                      std::vector<Interval>& out, std::span<std::size_t> ends) const override {
+    solid_.linesIntervals(axis, us, vs, out, ends);
+  }
+  bool linesPay(int axis) const override { return solid_.linesPay(axis); }
 
  private:
   SweptVolume solid_;  // a one-piece part standing at one pose

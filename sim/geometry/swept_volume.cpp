@@ -230,6 +230,10 @@ void SweptVolume::build(const ToolPart& part, const std::vector<Translation>& mo
         !bodies_.empty() && std::all_of(bodies_.begin(), bodies_.end(), [&](const SweptBody& b) {
           return b.alongAxis == a && profiles_[b.profile].rises.size() <= kRowRises;
         });
+  for (int a = 0; a < 3; ++a)
+    rowCross_[a] =
+        !bodies_.empty() && std::all_of(bodies_.begin(), bodies_.end(),
+                                        [&](const SweptBody& b) { return b.crossing[a]; });
 }
 
 void SweptVolume::addTranslation(const ToolPart& part, const std::vector<int>& profileOf,
@@ -505,75 +509,6 @@ Interval SweptVolume::axialInterval(const SweptBody& body, int axis, double lo, 
   const double base = coord(body.tip, axis);
   return coord(body.axis, axis) > 0.0 ? Interval{base + lo, base + hi}
                                       : Interval{base - hi, base - lo};
-}
-
-void SweptVolume::rowIntervals(int axis, std::span<const double> us, double v,
-                               std::vector<Interval>& out, std::span<std::size_t> ends) const {
-  const std::size_t n = us.size();
-  const bool meets =
-      axis >= 0 && axis <= 2 && n > 0 &&
-      !(v < coord(bounds_.lo, (axis + 2) % 3) || v > coord(bounds_.hi, (axis + 2) % 3));
-  if (!meets) {
-    std::fill(ends.begin(), ends.end(), out.size());
-    return;
-  }
-  if (!rowKernel_[axis]) {
-    // Bodies off the lines' axis gain nothing body by body (and lose the skip of a
-    // body inside what the line holds already, which turning moves live on).
-    LineSolid::rowIntervals(axis, us, v, out, ends);
-    return;
-  }
-  const int i1 = (axis + 1) % 3;
-  const int i2 = (axis + 2) % 3;
-  // Body by body, each line's union so far: while every interval meets the union of
-  // those before it, the union is one interval, their hull (what sorting and merging
-  // gives, to the bit). A line where one does not (rare: a chain crossing a line
-  // twice) is asked again on its own.
-  struct Scratch {
-    std::vector<Interval> hull;
-    std::vector<unsigned char> any, apart;
-    std::vector<double> q1, lo, hi;
-    std::vector<unsigned char> hit;
-  };
-  thread_local Scratch s;
-  s.any.assign(n, 0);
-  s.apart.assign(n, 0);
-  s.hull.resize(n);
-  for (const SweptBody& body : bodies_) {
-    if (v < coord(body.box.lo, i2) || v > coord(body.box.hi, i2)) continue;
-    // The lines whose u the body's box holds (a line outside it misses the body).
-    const std::size_t b = static_cast<std::size_t>(
-        std::lower_bound(us.begin(), us.end(), coord(body.box.lo, i1)) - us.begin());
-    const std::size_t e = static_cast<std::size_t>(
-        std::upper_bound(us.begin() + b, us.end(), coord(body.box.hi, i1)) - us.begin());
-    if (b >= e) continue;
-    const std::size_t m = e - b;
-    s.q1.resize(m), s.lo.resize(m), s.hi.resize(m), s.hit.resize(m);
-    const double tip1 = coord(body.tip, i1);
-    for (std::size_t j = 0; j < m; ++j) s.q1[j] = us[b + j] - tip1;
-    axialExtentRow(profiles_[body.profile], body.along, s.q1.data(), v - coord(body.tip, i2), m,
-                   body.linearTol, s.lo.data(), s.hi.data(), s.hit.data());
-    for (std::size_t j = 0; j < m; ++j) {
-      const Interval iv = axialInterval(body, axis, s.lo[j], s.hi[j]);
-      if (!(s.hit[j] && iv.hi > iv.lo)) continue;
-      const std::size_t i = b + j;
-      Interval& h = s.hull[i];
-      if (!s.any[i]) {
-        h = iv;
-        s.any[i] = 1;
-        continue;
-      }
-      s.apart[i] |= !(iv.lo <= h.hi && h.lo <= iv.hi);
-      h = Interval{std::min(h.lo, iv.lo), std::max(h.hi, iv.hi)};
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (s.apart[i])
-      lineIntervals(axis, us[i], v, out);
-    else if (s.any[i])
-      out.push_back(s.hull[i]);
-    ends[i] = out.size();
-  }
 }
 
 }  // namespace mdhd::geom

@@ -66,12 +66,21 @@ class SweptVolume final : public LineSolid {
   // square to it (cross_sweep.h) in closed form; every other line and body goes
   // through the general solver (section_solver.h).
   void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const override;
-  // The same answers. When every body stands on the lines' axis (a 3-axis tool's z
-  // columns), body by body over the row: each body solves the lines its box holds in
-  // one branch-free pass (axialExtentRow); otherwise line by line.
+  // The same answers (swept_rows.cpp). When every body stands on the lines' axis (a
+  // 3-axis tool's z columns), body by body over the row: each body solves the lines
+  // its box holds in one branch-free pass (axialExtentRow); when every body is square
+  // to it (its x and y lines), as linesIntervals; otherwise line by line.
   void rowIntervals(int axis, std::span<const double> us, double v, std::vector<Interval>& out,
                     std::span<std::size_t> ends) const override;
-  bool rowsPay(int axis) const override { return axis >= 0 && axis <= 2 && rowKernel_[axis]; }
+  bool rowsPay(int axis) const override {
+    return axis >= 0 && axis <= 2 && (rowKernel_[axis] || rowCross_[axis]);
+  }
+  // The same answers. When every body is square to the lines (a 3-axis tool's x and
+  // y lines), body by body, each piece over the lines it may meet in one
+  // branch-free pass (crossExtentRow); otherwise line by line.
+  void linesIntervals(int axis, std::span<const double> us, std::span<const double> vs,
+                      std::vector<Interval>& out, std::span<std::size_t> ends) const override;
+  bool linesPay(int axis) const override { return axis >= 0 && axis <= 2 && rowCross_[axis]; }
   // Every body on one grid axis, translated: the coordinates where each body's
   // section is its widest disk at every point of its move (profile from riseTop to
   // top), intersected over the bodies that reach there.
@@ -130,6 +139,8 @@ class SweptVolume final : public LineSolid {
   bool bodyInterval(const SweptBody& body, int axis, double u, double v, bool general,
                     Interval& out) const;
   bool crossBodyInterval(const SweptBody& body, int axis, double u, double v, Interval& out) const;
+  void crossLinesIntervals(int axis, std::span<const double> us, std::span<const double> vs,
+                           std::vector<Interval>& out, std::span<std::size_t> ends) const;
   bool pieceExtent(const SweptBody& body, const SweptPiece& p, const LineFrame& f, bool general,
                    double& lo, double& hi) const;
 
@@ -140,6 +151,7 @@ class SweptVolume final : public LineSolid {
   Aabb bounds_;
   double errorBound_ = 0.0;
   bool rowKernel_[3] = {false, false, false};  // every body solved by axialExtentRow on axis a
+  bool rowCross_[3] = {false, false, false};   // every body square to axis a (crossExtentRow)
 };
 
 // How many equal segments SweptVolume::between uses for these arguments.

@@ -159,43 +159,33 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
   store(buf, axis, slot);
 }
 
-void IntervalCache::fillRow(int axis, int iv, std::span<const int> ius) const {
-  if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
+bool IntervalCache::claim(int axis, int iu, int iv, std::vector<Claimed>& claimed) const {
   const Lines& l = lines_[axis];
-  if (iv < l.vlo || iv > l.vhi) return;
+  if (iu < l.ulo || iu > l.uhi || iv < l.vlo || iv > l.vhi) return false;
+  if (l.band == 0 && band_.holds(iu)) iu = band_.lo;  // repeats find their slot claimed
   if (l.band == 1 && band_.holds(iv)) iv = band_.lo;
-  struct Claimed {
-    std::size_t slot;
-    std::uint32_t was;  // its state before the claim, restored if the solid throws
-  };
-  thread_local std::vector<Claimed> claimed;
-  thread_local std::vector<double> us;
+  const std::size_t i =
+      l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
+  std::atomic<std::uint32_t>& s = store_->states_[i];
+  std::uint32_t state = s.load(std::memory_order_acquire);
+  if (state == stamp_ || state == stamp_ - 1) return false;
+  if (shared_) {
+    if (!s.compare_exchange_strong(state, stamp_ - 1, std::memory_order_acquire)) return false;
+  } else {
+    s.store(stamp_ - 1, std::memory_order_relaxed);
+  }
+  claimed.push_back({i, state});
+  return true;
+}
+
+template <class Ask>
+void IntervalCache::storeClaimed(int axis, const std::vector<Claimed>& claimed, Ask ask) const {
   thread_local std::vector<geom::Interval> out;
   thread_local std::vector<std::size_t> ends;
-  claimed.clear();
-  us.clear();
-  const std::uint32_t busy = stamp_ - 1;
-  for (int iu : ius) {
-    if (iu < l.ulo || iu > l.uhi) continue;
-    if (l.band == 0 && band_.holds(iu)) iu = band_.lo;  // ascending still; repeats are claimed
-    const std::size_t i =
-        l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
-    std::atomic<std::uint32_t>& s = store_->states_[i];
-    std::uint32_t state = s.load(std::memory_order_acquire);
-    if (state == stamp_ || state == busy) continue;
-    if (shared_) {
-      if (!s.compare_exchange_strong(state, busy, std::memory_order_acquire)) continue;
-    } else {
-      s.store(busy, std::memory_order_relaxed);
-    }
-    claimed.push_back({i, state});
-    us.push_back(grid_.toMm(axisU(axis), iu));
-  }
-  if (claimed.empty()) return;
   out.clear();
   ends.resize(claimed.size());
   try {
-    solid_.rowIntervals(axis, us, grid_.toMm(axisV(axis), iv), out, ends);
+    ask(out, std::span<std::size_t>(ends));
     std::size_t from = 0;
     for (std::size_t j = 0; j < claimed.size(); ++j) {
       store(std::span<const geom::Interval>(out.data() + from, ends[j] - from), axis,
@@ -208,6 +198,47 @@ void IntervalCache::fillRow(int axis, int iv, std::span<const int> ius) const {
     throw;
   }
   for (const Claimed& c : claimed) store_->states_[c.slot].store(stamp_, std::memory_order_release);
+}
+
+void IntervalCache::fillRow(int axis, int iv, std::span<const int> ius) const {
+  if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
+  const Lines& l = lines_[axis];
+  if (iv < l.vlo || iv > l.vhi) return;
+  if (l.band == 1 && band_.holds(iv)) iv = band_.lo;
+  thread_local std::vector<Claimed> claimed;
+  thread_local std::vector<double> us;
+  claimed.clear();
+  us.clear();
+  for (int iu : ius) {
+    // In the band, u moves to the band's first level: still ascending.
+    const int bu = l.band == 0 && band_.holds(iu) ? band_.lo : iu;
+    if (claim(axis, iu, iv, claimed)) us.push_back(grid_.toMm(axisU(axis), bu));
+  }
+  if (claimed.empty()) return;
+  const double v = grid_.toMm(axisV(axis), iv);
+  storeClaimed(axis, claimed, [&](std::vector<geom::Interval>& out, std::span<std::size_t> ends) {
+    solid_.rowIntervals(axis, us, v, out, ends);
+  });
+}
+
+void IntervalCache::fillLines(int axis, std::span<const int> ius, std::span<const int> ivs) const {
+  if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
+  const Lines& l = lines_[axis];
+  thread_local std::vector<Claimed> claimed;
+  thread_local std::vector<double> us, vs;
+  claimed.clear();
+  us.clear();
+  vs.clear();
+  for (std::size_t j = 0; j < ius.size() && j < ivs.size(); ++j) {
+    const int iu = ius[j], iv = ivs[j];
+    if (!claim(axis, iu, iv, claimed)) continue;
+    us.push_back(grid_.toMm(axisU(axis), l.band == 0 && band_.holds(iu) ? band_.lo : iu));
+    vs.push_back(grid_.toMm(axisV(axis), l.band == 1 && band_.holds(iv) ? band_.lo : iv));
+  }
+  if (claimed.empty()) return;
+  storeClaimed(axis, claimed, [&](std::vector<geom::Interval>& out, std::span<std::size_t> ends) {
+    solid_.linesIntervals(axis, us, vs, out, ends);
+  });
 }
 
 std::size_t IntervalCache::queries() const {

@@ -91,6 +91,12 @@ class IntervalCache {
   void fillRow(int axis, int iv, std::span<const int> ius) const;
   // Whether fillRow along `axis` is cheaper per line than line() (LineSolid::rowsPay).
   bool rowsPay(int axis) const { return solid_.rowsPay(axis); }
+  // The same for any lines along `axis`, line i through (ius[i], ivs[i]), in any order
+  // (one LineSolid::linesIntervals call): the x and y lines a cut will ask for at many
+  // levels and rows.
+  void fillLines(int axis, std::span<const int> ius, std::span<const int> ivs) const;
+  // Whether fillLines along `axis` is cheaper per line than line() (LineSolid::linesPay).
+  bool linesPay(int axis) const { return solid_.linesPay(axis); }
   // The solid's prism band (LineSolid::prismBand) as grid levels on `axis`: lines
   // square to it at levels in (lo, hi] are the line at lo. axis -1: none.
   struct PrismBand {
@@ -114,6 +120,19 @@ class IntervalCache {
     int band = -1;  // band_'s levels are on this line's u (0) or v (1) coordinate, or none
   };
   [[noreturn]] static void wrongAxis();
+  // A slot claimed by a batch fill, with its state before the claim (restored if
+  // the solid throws).
+  struct Claimed {
+    std::size_t slot;
+    std::uint32_t was;
+  };
+  // The slot of line (iu, iv) (band applied) if this thread may fill it: claimed and
+  // appended to `claimed`. False outside the box and where filled or being filled.
+  bool claim(int axis, int iu, int iv, std::vector<Claimed>& claimed) const;
+  // Asks `ask(out, ends)` for the claimed lines' intervals, stores them and marks the
+  // slots filled.
+  template <class Ask>
+  void storeClaimed(int axis, const std::vector<Claimed>& claimed, Ask ask) const;
   void fillOnce(int axis, int iu, int iv, std::size_t i) const;
   void fill(int axis, int iu, int iv, LineStore::Slot& slot) const;
   // Stores one line's intervals (mm) in its slot as grid units, snapped and merged.

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <set>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -37,11 +38,19 @@ class CountingSolid : public geom::LineSolid {
     ++rows;
     inner_.rowIntervals(axis, us, v, out, ends);
   }
+  void linesIntervals(int axis, std::span<const double> us, std::span<const double> vs,
+                      std::vector<geom::Interval>& out,
+                      std::span<std::size_t> ends) const override {
+    calls += static_cast<int>(us.size());
+    ++batches;
+    inner_.linesIntervals(axis, us, vs, out, ends);
+  }
   bool prismBand(int& axis, double& lo, double& hi) const override {
     return inner_.prismBand(axis, lo, hi);
   }
   mutable std::atomic<int> calls{0};
   mutable std::atomic<int> rows{0};
+  mutable std::atomic<int> batches{0};
 
  private:
   const geom::LineSolid& inner_;
@@ -273,6 +282,90 @@ TEST(IntervalCache, ARowFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked)
       }
     EXPECT_EQ(rows.queries(), single.queries());
   }
+}
+
+TEST(IntervalCache, ALinesFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked) {
+  const GridSpec g = grid();
+  const geom::SweptVolume sweep = ballChain();
+  for (int mode = 0; mode < 6; ++mode) {
+    const int axis = mode % 3;
+    CountingSolid counting(sweep);
+    IntervalCache lines(g, counting), single(g, sweep);
+    lines.setShared(mode < 3);
+    const GridBox& t = lines.touched();
+    const int u = axisU(axis), v = axisV(axis);
+    // Lines of a checkerboard (some outside the box), column by column, in one fill;
+    // then the same again, which asks nothing.
+    std::vector<int> ius, ivs;
+    for (int iu = t.hi[u] + 2; iu >= t.lo[u] - 2; --iu)
+      for (int iv = t.lo[v] - 1; iv <= t.hi[v] + 1; ++iv)
+        if ((iu + iv) % 2 == 0) ius.push_back(iu), ivs.push_back(iv);
+    lines.fillLines(axis, ius, ivs);
+    lines.fillLines(axis, ius, ivs);
+    const int filled = counting.calls;
+    EXPECT_EQ(counting.batches, 1);
+    const IntervalCache::PrismBand& band = lines.prismBand();
+    ASSERT_EQ(band.axis, 2);  // lines in the band are their band's first level's
+    const auto key = [&](int iu, int iv) {
+      if (band.axis == u && band.holds(iu)) iu = band.lo;
+      if (band.axis == v && band.holds(iv)) iv = band.lo;
+      return std::pair(iu, iv);
+    };
+    std::set<std::pair<int, int>> known;
+    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
+      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu)
+        if ((iu + iv) % 2 == 0) known.insert(key(iu, iv));
+    EXPECT_EQ(static_cast<std::size_t>(filled), known.size());  // each once, none outside
+    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
+      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu) {
+        const int before = counting.calls;
+        const auto got = lines.line(axis, iu, iv);
+        EXPECT_EQ(counting.calls - before, known.insert(key(iu, iv)).second ? 1 : 0)
+            << axis << " " << iu << " " << iv;
+        EXPECT_TRUE(sameSpans(got, single.line(axis, iu, iv))) << axis << " " << iu << " " << iv;
+      }
+    EXPECT_EQ(lines.queries(), single.queries());
+  }
+}
+
+TEST(IntervalCache, LinesFillsFromTwoThreadsShareTheLinesAndAgree) {
+  const GridSpec g = grid();
+  const geom::SweptVolume sweep = ballChain();
+  ASSERT_TRUE(sweep.linesPay(0) && sweep.linesPay(1));  // through the sweep's own batch form
+  CountingSolid counting(sweep);
+  IntervalCache shared(g, counting), single(g, sweep);
+  const GridBox& t = shared.touched();
+  auto work = [&](int first) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const int u = axisU(axis), v = axisV(axis);
+      for (int iv = t.lo[v]; iv <= t.hi[v]; iv += 4) {
+        std::vector<int> ius, ivs;
+        for (int dv = 0; dv < 4; ++dv)
+          for (int iu = t.lo[u] + (first + dv) % 3; iu <= t.hi[u]; ++iu)
+            ius.push_back(iu), ivs.push_back(iv + dv);
+        shared.fillLines(axis, ius, ivs);
+        for (int iu = t.lo[u]; iu <= t.hi[u]; iu += 5) shared.line(axis, iu, iv);
+      }
+    }
+  };
+  std::thread a(work, 0), b(work, 1);
+  a.join();
+  b.join();
+  const IntervalCache::PrismBand& band = shared.prismBand();
+  std::set<std::tuple<int, int, int>> distinct;
+  for (int axis = 0; axis < 2; ++axis) {
+    const int u = axisU(axis), v = axisV(axis);
+    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
+      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu) {
+        EXPECT_TRUE(sameSpans(shared.line(axis, iu, iv), single.line(axis, iu, iv)))
+            << axis << " " << iu << " " << iv;
+        const int ku = band.axis == u && band.holds(iu) ? band.lo : iu;
+        const int kv = band.axis == v && band.holds(iv) ? band.lo : iv;
+        distinct.insert({axis, ku, kv});
+      }
+  }
+  // Every line computed exactly once, whichever thread or path got there first.
+  EXPECT_EQ(counting.calls, static_cast<int>(distinct.size()));
 }
 
 TEST(IntervalCache, RowFillsFromTwoThreadsShareTheLinesAndAgree) {
