@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "sim/geometry/axial_sweep.h"
+#include "sim/geometry/row_targets.h"
 
 namespace mdhd::geom {
 
@@ -174,13 +175,6 @@ template <Rises R>
 
 }  // namespace
 
-// One clone for AVX2 machines (four lines per instruction) and one for any
-// x86-64, chosen when the program loads. No FMA: it would round differently.
-#if defined(MDHD_ROW_CLONES) && defined(__x86_64__)
-#define MDHD_ROW_TARGETS __attribute__((target_clones("avx2", "default")))
-#else
-#define MDHD_ROW_TARGETS
-#endif
 MDHD_ROW_TARGETS void axialExtentRow(const AxialProfile& profile, const AxialMove& move,
                                      const double* q1, double q2, std::size_t n, double linearTol,
                                      double* lo, double* hi, unsigned char* hit) {

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "sim/geometry/cross_sweep.h"
+#include "sim/geometry/row_targets.h"
 
 namespace mdhd::geom {
 
@@ -168,11 +169,6 @@ template <bool kAcross>
 
 }  // namespace
 
-#if defined(MDHD_ROW_CLONES) && defined(__x86_64__)
-#define MDHD_ROW_TARGETS __attribute__((target_clones("avx2", "default")))
-#else
-#define MDHD_ROW_TARGETS
-#endif
 MDHD_ROW_TARGETS void crossExtentRow(const PieceQuadric& p, const CrossMove& m, const double* zeta0,
                                      const double* h0, std::size_t n, double linearTol,
                                      double quadricTol, double* lo, double* hi,

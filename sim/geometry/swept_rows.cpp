@@ -3,14 +3,17 @@
 // crossExtentRow for lines square to it), the same answers to the bit as asking
 // line by line (lineIntervals), for less per line.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "sim/geometry/row_targets.h"
 #include "sim/geometry/swept_volume.h"
 
 namespace mdhd::geom {
@@ -56,6 +59,152 @@ struct LineHulls {
     }
   }
 };
+
+// crossLinesIntervals' arrays: per line (n), and per line of the piece at hand (k);
+// each line's union so far as its hull, in arrays of its own so that the loops
+// over lines vectorise (LineHulls' logic).
+struct CrossScratch {
+  // Flags as wide as the doubles beside them: loops mixing widths do not vectorise.
+  std::vector<std::uint64_t> keep, any, apart, on;
+  std::vector<double> zeta, h0, za, zb, lo, hi, hullLo, hullHi;
+  std::vector<std::uint32_t> idx;
+  std::vector<double> pz, ph, plo, phi;
+  std::vector<unsigned char> hit;
+
+  void reset(std::size_t n) {
+    for (auto* v : {&keep, &any, &apart, &on}) v->assign(n, 0);
+    hit.resize(n);
+    for (auto* v : {&zeta, &h0, &za, &zb, &lo, &hi, &hullLo, &hullHi, &pz, &ph, &plo, &phi})
+      v->resize(n);
+    idx.resize(n);
+  }
+};
+
+// What crossBodyInterval needs of a body, as locals.
+struct BodyFrame {
+  double u0, u1, v0, v1;  // its box across the lines
+  double a0, a1;          // and along them
+  double tip1, tip2;
+  glm::dvec3 axis, normal;
+  double rise;  // length * zd: how far along its axis the move goes
+  double linearTol;
+};
+
+struct PieceFrame {
+  double z0, z1, u0, u1, v0, v1;
+};
+
+// Each line's height on the body's axis and distance across its move, and whether
+// the body may add to the line: its box holds the line and the line's union so far
+// does not hold the box along it (lineIntervals skips those too: consecutive steps
+// of a pass, seen from across it). kAxis: the lines' axis, so that the products
+// are crossBodyInterval's, in its order (glm::dot of a vector with a zero there).
+template <int kAxis>
+[[gnu::always_inline]] inline std::uint64_t bodyLinesOn(
+    const BodyFrame& f, const double* __restrict us, const double* __restrict vs, std::size_t n,
+    const std::uint64_t* __restrict any, const std::uint64_t* __restrict apart,
+    const double* __restrict hlo, const double* __restrict hhi, std::uint64_t* __restrict keep,
+    double* __restrict zeta, double* __restrict h0, double* __restrict za, double* __restrict zb,
+    double* __restrict lo, double* __restrict hi) {
+  // (Restrict holds for parameters only: every array comes in as one.)
+  constexpr int k1 = (kAxis + 1) % 3, k2 = (kAxis + 2) % 3;
+  using M = std::uint64_t;
+  const double ax = f.axis.x, ay = f.axis.y, az = f.axis.z;
+  const double nx = f.normal.x, ny = f.normal.y, nz = f.normal.z;
+  const double u0 = f.u0, u1 = f.u1, v0 = f.v0, v1 = f.v1, a0 = f.a0, a1 = f.a1;
+  const double tip1 = f.tip1, tip2 = f.tip2, rise = f.rise, tol = f.linearTol;
+  M count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const M covered = any[i] & ~apart[i] & M(a0 >= hlo[i]) & M(a1 <= hhi[i]);
+    const M outside = M(us[i] < u0) | M(us[i] > u1) | M(vs[i] < v0) | M(vs[i] > v1);
+    const M in = (outside | covered) ^ 1;
+    keep[i] = in;
+    count += in;
+    double c[3];
+    c[k1] = us[i] - tip1;
+    c[k2] = vs[i] - tip2;
+    c[kAxis] = 0.0;
+    const double z = ax * c[0] + ay * c[1] + az * c[2];
+    zeta[i] = z;
+    h0[i] = nx * c[0] + ny * c[1] + nz * c[2];
+    // The heights on the axis the line passes over s in [0, L].
+    za[i] = std::min(z, z - rise) - tol;
+    zb[i] = std::max(z, z - rise) + tol;
+    lo[i] = HUGE_VAL;
+    hi[i] = -HUGE_VAL;
+  }
+  return count;
+}
+
+MDHD_ROW_TARGETS bool bodyLines(int axis, const BodyFrame& f, const double* us, const double* vs,
+                                std::size_t n, CrossScratch& s) {
+  const BodyFrame b = f;
+  const auto run = [&](auto on) {
+    return bodyLinesOn<decltype(on)::value>(b, us, vs, n, s.any.data(), s.apart.data(),
+                                            s.hullLo.data(), s.hullHi.data(), s.keep.data(),
+                                            s.zeta.data(), s.h0.data(), s.za.data(), s.zb.data(),
+                                            s.lo.data(), s.hi.data()) > 0;
+  };
+  if (axis == 0) return run(std::integral_constant<int, 0>{});
+  if (axis == 1) return run(std::integral_constant<int, 1>{});
+  return run(std::integral_constant<int, 2>{});
+}
+
+// The body's lines that the piece may meet (crossBodyInterval's tests): on[i].
+[[gnu::always_inline]] inline void pieceMask(const PieceFrame& p, const double* __restrict us,
+                                             const double* __restrict vs, std::size_t n,
+                                             const std::uint64_t* __restrict keep,
+                                             const double* __restrict za,
+                                             const double* __restrict zb,
+                                             std::uint64_t* __restrict on) {
+  using M = std::uint64_t;
+  const double z0 = p.z0, z1 = p.z1, u0 = p.u0, u1 = p.u1, v0 = p.v0, v1 = p.v1;
+  for (std::size_t i = 0; i < n; ++i)
+    on[i] = keep[i] & ((M(z1 < za[i]) | M(z0 > zb[i]) | M(us[i] < u0) | M(us[i] > u1) |
+                        M(vs[i] < v0) | M(vs[i] > v1)) ^
+                       1);
+}
+
+// Those lines gathered into pz/ph with their indices in idx; returns how many.
+MDHD_ROW_TARGETS std::size_t pieceLines(const PieceFrame& f, const double* us, const double* vs,
+                                        std::size_t n, CrossScratch& s) {
+  pieceMask(f, us, vs, n, s.keep.data(), s.za.data(), s.zb.data(), s.on.data());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    // Written always, kept where on: no branch.
+    s.idx[k] = static_cast<std::uint32_t>(i);
+    s.pz[k] = s.zeta[i];
+    s.ph[k] = s.h0[i];
+    k += s.on[i];
+  }
+  return k;
+}
+
+// Adds the body's interval on each of its lines (lo, hi relative to the tip's `tip`)
+// to the line's union: LineHulls::add for every line the body hit.
+[[gnu::always_inline]] inline void mergeLines(
+    double tip, std::size_t n, const std::uint64_t* __restrict keep, const double* __restrict lo,
+    const double* __restrict hi, std::uint64_t* __restrict any, std::uint64_t* __restrict apart,
+    double* __restrict hlo, double* __restrict hhi) {
+  using M = std::uint64_t;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double ilo = lo[i] + tip, ihi = hi[i] + tip;
+    const M valid = keep[i] & M(hi[i] > lo[i]) & M(ihi > ilo);
+    const M had = any[i];
+    const M meets = M(ilo <= hhi[i]) & M(hlo[i] <= ihi);
+    apart[i] |= valid & had & (meets ^ 1);
+    const double nlo = had != 0 ? std::min(hlo[i], ilo) : ilo;
+    const double nhi = had != 0 ? std::max(hhi[i], ihi) : ihi;
+    hlo[i] = valid != 0 ? nlo : hlo[i];
+    hhi[i] = valid != 0 ? nhi : hhi[i];
+    any[i] = had | valid;
+  }
+}
+
+MDHD_ROW_TARGETS void mergeBody(double tip, std::size_t n, CrossScratch& s) {
+  mergeLines(tip, n, s.keep.data(), s.lo.data(), s.hi.data(), s.any.data(), s.apart.data(),
+             s.hullLo.data(), s.hullHi.data());
+}
 
 }  // namespace
 
@@ -125,87 +274,49 @@ void SweptVolume::linesIntervals(int axis, std::span<const double> us, std::span
 void SweptVolume::crossLinesIntervals(int axis, std::span<const double> us,
                                       std::span<const double> vs, std::vector<Interval>& out,
                                       std::span<std::size_t> ends) const {
-  // crossBodyInterval body by body: its per-line values computed as it does, then
-  // each piece over the lines its tests keep, through crossExtentRow.
+  // crossBodyInterval body by body, each loop over the lines without a branch per
+  // line: the body's values for every line (bodyLines), then each piece over the
+  // lines its tests keep (pieceLines, crossExtentRow), then the lines' unions.
   const std::size_t n = us.size();
   const int i1 = (axis + 1) % 3;
   const int i2 = (axis + 2) % 3;
-  struct Scratch {
-    LineHulls hulls;
-    std::vector<std::uint32_t> inBody, inPiece;
-    std::vector<double> zeta, h0, za, zb, lo, hi;  // per line of the body
-    std::vector<double> pz, ph, plo, phi;          // per line of the piece
-    std::vector<unsigned char> hit;
-  };
-  thread_local Scratch s;
-  s.hulls.reset(n);
+  thread_local CrossScratch s;
+  s.reset(n);
   for (const SweptBody& body : bodies_) {
-    const double u0 = coord(body.box.lo, i1), u1 = coord(body.box.hi, i1);
-    const double v0 = coord(body.box.lo, i2), v1 = coord(body.box.hi, i2);
-    // The lines the body's box holds, but those whose union so far holds the body's
-    // box along them already (lineIntervals skips them too: consecutive steps of a
-    // pass, seen from across it, are such bodies).
-    const double a0 = coord(body.box.lo, axis), a1 = coord(body.box.hi, axis);
-    s.inBody.clear();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Interval& h = s.hulls.hull[i];
-      const bool covered = s.hulls.any[i] & !s.hulls.apart[i] & (a0 >= h.lo) & (a1 <= h.hi);
-      if (!(us[i] < u0 || us[i] > u1 || vs[i] < v0 || vs[i] > v1 || covered))
-        s.inBody.push_back(static_cast<std::uint32_t>(i));
-    }
-    const std::size_t m = s.inBody.size();
-    if (m == 0) continue;
-    s.zeta.resize(m), s.h0.resize(m), s.za.resize(m), s.zb.resize(m);
-    s.lo.assign(m, std::numeric_limits<double>::infinity());
-    s.hi.assign(m, -std::numeric_limits<double>::infinity());
     const CrossMove& mv = body.cross[axis];
-    for (std::size_t j = 0; j < m; ++j) {
-      const std::size_t i = s.inBody[j];
-      glm::dvec3 delta(0.0);
-      glm::value_ptr(delta)[i1] = us[i] - coord(body.tip, i1);
-      glm::value_ptr(delta)[i2] = vs[i] - coord(body.tip, i2);
-      const double zeta0 = glm::dot(body.axis, delta);
-      s.zeta[j] = zeta0;
-      s.h0[j] = glm::dot(body.crossNormal[axis], delta);
-      // The heights on the axis the line passes over s in [0, L].
-      s.za[j] = std::min(zeta0, zeta0 - mv.length * mv.zd) - body.linearTol;
-      s.zb[j] = std::max(zeta0, zeta0 - mv.length * mv.zd) + body.linearTol;
-    }
+    const BodyFrame f{coord(body.box.lo, i1), coord(body.box.hi, i1),   coord(body.box.lo, i2),
+                      coord(body.box.hi, i2), coord(body.box.lo, axis), coord(body.box.hi, axis),
+                      coord(body.tip, i1),    coord(body.tip, i2),      body.axis,
+                      body.crossNormal[axis], mv.length * mv.zd,        body.linearTol};
+    if (!bodyLines(axis, f, us.data(), vs.data(), n, s)) continue;
     for (int pi = body.pieceBegin; pi < body.pieceEnd; ++pi) {
       const SweptPiece& p = pieces_[pi];
-      const double pu0 = coord(p.box.lo, i1), pu1 = coord(p.box.hi, i1);
-      const double pv0 = coord(p.box.lo, i2), pv1 = coord(p.box.hi, i2);
-      s.inPiece.clear();
-      for (std::size_t j = 0; j < m; ++j) {
-        const std::size_t i = s.inBody[j];
-        if (p.q.z1 < s.za[j] || p.q.z0 > s.zb[j]) continue;
-        if (us[i] < pu0 || us[i] > pu1 || vs[i] < pv0 || vs[i] > pv1) continue;
-        s.inPiece.push_back(static_cast<std::uint32_t>(j));
-      }
-      const std::size_t k = s.inPiece.size();
+      const PieceFrame pf{p.q.z0,
+                          p.q.z1,
+                          coord(p.box.lo, i1),
+                          coord(p.box.hi, i1),
+                          coord(p.box.lo, i2),
+                          coord(p.box.hi, i2)};
+      const std::size_t k = pieceLines(pf, us.data(), vs.data(), n, s);
       if (k == 0) continue;
-      s.pz.resize(k), s.ph.resize(k), s.plo.resize(k), s.phi.resize(k), s.hit.resize(k);
-      for (std::size_t t = 0; t < k; ++t) {
-        s.pz[t] = s.zeta[s.inPiece[t]];
-        s.ph[t] = s.h0[s.inPiece[t]];
-      }
       crossExtentRow(p.q, mv, s.pz.data(), s.ph.data(), k, body.linearTol, body.quadricTol,
                      s.plo.data(), s.phi.data(), s.hit.data());
       for (std::size_t t = 0; t < k; ++t) {
-        if (!s.hit[t]) continue;
-        const std::size_t j = s.inPiece[t];
-        s.lo[j] = std::min(s.lo[j], s.plo[t]);
-        s.hi[j] = std::max(s.hi[j], s.phi[t]);
+        const std::size_t j = s.idx[t];
+        const bool on = s.hit[t];
+        s.lo[j] = on ? std::min(s.lo[j], s.plo[t]) : s.lo[j];
+        s.hi[j] = on ? std::max(s.hi[j], s.phi[t]) : s.hi[j];
       }
     }
-    const double tip = coord(body.tip, axis);
-    for (std::size_t j = 0; j < m; ++j) {
-      if (!(s.hi[j] > s.lo[j])) continue;
-      const Interval iv{s.lo[j] + tip, s.hi[j] + tip};
-      if (iv.hi > iv.lo) s.hulls.add(s.inBody[j], iv);
-    }
+    mergeBody(coord(body.tip, axis), n, s);
   }
-  s.hulls.emit(out, ends, [&](std::size_t i) { lineIntervals(axis, us[i], vs[i], out); });
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.apart[i])
+      lineIntervals(axis, us[i], vs[i], out);
+    else if (s.any[i])
+      out.push_back(Interval{s.hullLo[i], s.hullHi[i]});
+    ends[i] = out.size();
+  }
 }
 
 }  // namespace mdhd::geom
