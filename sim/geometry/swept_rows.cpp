@@ -27,25 +27,17 @@ inline double coord(const glm::dvec3& v, int i) {
 // Each line's union so far, body by body: while every interval meets the union of
 // those before it, the union is one interval, their hull (what sorting and merging
 // gives, to the bit). A line where one does not (rare: a chain crossing a line
-// twice) is marked to be asked again on its own.
-struct LineHulls {
-  std::vector<Interval> hull;
-  std::vector<unsigned char> any, apart;
+// twice) is marked apart, to be asked again on its own. Arrays of their own, flags
+// as wide as the doubles, so that the merge over lines vectorises.
+struct Hulls {
+  std::vector<std::uint64_t> any, apart;
+  std::vector<double> lo, hi;
 
   void reset(std::size_t n) {
     any.assign(n, 0);
     apart.assign(n, 0);
-    hull.resize(n);
-  }
-  void add(std::size_t i, const Interval& iv) {
-    Interval& h = hull[i];
-    if (!any[i]) {
-      h = iv;
-      any[i] = 1;
-      return;
-    }
-    apart[i] |= !(iv.lo <= h.hi && h.lo <= iv.hi);
-    h = Interval{std::min(h.lo, iv.lo), std::max(h.hi, iv.hi)};
+    lo.resize(n);
+    hi.resize(n);
   }
   // Appends line i's intervals for every line; `again(i)` asks a line apart on its own.
   template <class Again>
@@ -54,28 +46,66 @@ struct LineHulls {
       if (apart[i])
         again(i);
       else if (any[i])
-        out.push_back(hull[i]);
+        out.push_back(Interval{lo[i], hi[i]});
       ends[i] = out.size();
     }
   }
 };
 
+// Adds interval i of a body (from `lane(i, lo, hi)`, which says whether it holds
+// one) to line i's hull, for n lines from `any` etc. on (restrict holds for
+// parameters only: every array comes in as one).
+template <class Lane>
+[[gnu::always_inline]] inline void mergeLanes(std::size_t n, Lane lane,
+                                              std::uint64_t* __restrict any,
+                                              std::uint64_t* __restrict apart,
+                                              double* __restrict hlo, double* __restrict hhi) {
+  using M = std::uint64_t;
+  for (std::size_t i = 0; i < n; ++i) {
+    double ilo, ihi;
+    const M valid = lane(i, ilo, ihi);
+    const M had = any[i];
+    const M meets = M(ilo <= hhi[i]) & M(hlo[i] <= ihi);
+    apart[i] |= valid & had & (meets ^ 1);
+    const double nlo = had != 0 ? std::min(hlo[i], ilo) : ilo;
+    const double nhi = had != 0 ? std::max(hhi[i], ihi) : ihi;
+    hlo[i] = valid != 0 ? nlo : hlo[i];
+    hhi[i] = valid != 0 ? nhi : hhi[i];
+    any[i] = had | valid;
+  }
+}
+
+// A body on the lines' axis: its intervals on lines [b, b + m) from axialExtentRow's
+// heights (axialInterval, inlined).
+MDHD_ROW_TARGETS void mergeAxial(double base, bool up, std::size_t b, std::size_t m,
+                                 const double* __restrict lo, const double* __restrict hi,
+                                 const unsigned char* __restrict hit, Hulls& h) {
+  using M = std::uint64_t;
+  const auto lane = [&](std::size_t j, double& ilo, double& ihi) {
+    ilo = up ? base + lo[j] : base - hi[j];
+    ihi = up ? base + hi[j] : base - lo[j];
+    return M(hit[j] != 0) & M(ihi > ilo);
+  };
+  mergeLanes(m, lane, h.any.data() + b, h.apart.data() + b, h.lo.data() + b, h.hi.data() + b);
+}
+
 // crossLinesIntervals' arrays: per line (n), and per line of the piece at hand (k);
 // each line's union so far as its hull, in arrays of its own so that the loops
-// over lines vectorise (LineHulls' logic).
+// over lines vectorise.
 struct CrossScratch {
   // Flags as wide as the doubles beside them: loops mixing widths do not vectorise.
-  std::vector<std::uint64_t> keep, any, apart, on;
-  std::vector<double> zeta, h0, za, zb, lo, hi, hullLo, hullHi;
+  Hulls hulls;
+  std::vector<std::uint64_t> keep, on;
+  std::vector<double> zeta, h0, za, zb, lo, hi;
   std::vector<std::uint32_t> idx;
   std::vector<double> pz, ph, plo, phi;
   std::vector<unsigned char> hit;
 
   void reset(std::size_t n) {
-    for (auto* v : {&keep, &any, &apart, &on}) v->assign(n, 0);
+    hulls.reset(n);
+    for (auto* v : {&keep, &on}) v->assign(n, 0);
     hit.resize(n);
-    for (auto* v : {&zeta, &h0, &za, &zb, &lo, &hi, &hullLo, &hullHi, &pz, &ph, &plo, &phi})
-      v->resize(n);
+    for (auto* v : {&zeta, &h0, &za, &zb, &lo, &hi, &pz, &ph, &plo, &phi}) v->resize(n);
     idx.resize(n);
   }
 };
@@ -140,8 +170,8 @@ MDHD_ROW_TARGETS bool bodyLines(int axis, const BodyFrame& f, const double* us, 
                                 std::size_t n, CrossScratch& s) {
   const BodyFrame b = f;
   const auto run = [&](auto on) {
-    return bodyLinesOn<decltype(on)::value>(b, us, vs, n, s.any.data(), s.apart.data(),
-                                            s.hullLo.data(), s.hullHi.data(), s.keep.data(),
+    return bodyLinesOn<decltype(on)::value>(b, us, vs, n, s.hulls.any.data(), s.hulls.apart.data(),
+                                            s.hulls.lo.data(), s.hulls.hi.data(), s.keep.data(),
                                             s.zeta.data(), s.h0.data(), s.za.data(), s.zb.data(),
                                             s.lo.data(), s.hi.data()) > 0;
   };
@@ -181,29 +211,19 @@ MDHD_ROW_TARGETS std::size_t pieceLines(const PieceFrame& f, const double* us, c
 }
 
 // Adds the body's interval on each of its lines (lo, hi relative to the tip's `tip`)
-// to the line's union: LineHulls::add for every line the body hit.
-[[gnu::always_inline]] inline void mergeLines(
-    double tip, std::size_t n, const std::uint64_t* __restrict keep, const double* __restrict lo,
-    const double* __restrict hi, std::uint64_t* __restrict any, std::uint64_t* __restrict apart,
-    double* __restrict hlo, double* __restrict hhi) {
-  using M = std::uint64_t;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double ilo = lo[i] + tip, ihi = hi[i] + tip;
-    const M valid = keep[i] & M(hi[i] > lo[i]) & M(ihi > ilo);
-    const M had = any[i];
-    const M meets = M(ilo <= hhi[i]) & M(hlo[i] <= ihi);
-    apart[i] |= valid & had & (meets ^ 1);
-    const double nlo = had != 0 ? std::min(hlo[i], ilo) : ilo;
-    const double nhi = had != 0 ? std::max(hhi[i], ihi) : ihi;
-    hlo[i] = valid != 0 ? nlo : hlo[i];
-    hhi[i] = valid != 0 ? nhi : hhi[i];
-    any[i] = had | valid;
-  }
-}
-
+// to the line's hull (crossBodyInterval's result for every line the body holds).
 MDHD_ROW_TARGETS void mergeBody(double tip, std::size_t n, CrossScratch& s) {
-  mergeLines(tip, n, s.keep.data(), s.lo.data(), s.hi.data(), s.any.data(), s.apart.data(),
-             s.hullLo.data(), s.hullHi.data());
+  using M = std::uint64_t;
+  const std::uint64_t* __restrict keep = s.keep.data();
+  const double* __restrict lo = s.lo.data();
+  const double* __restrict hi = s.hi.data();
+  const auto lane = [&](std::size_t i, double& ilo, double& ihi) {
+    ilo = lo[i] + tip;
+    ihi = hi[i] + tip;
+    return keep[i] & M(hi[i] > lo[i]) & M(ihi > ilo);
+  };
+  Hulls& h = s.hulls;
+  mergeLanes(n, lane, h.any.data(), h.apart.data(), h.lo.data(), h.hi.data());
 }
 
 }  // namespace
@@ -234,7 +254,7 @@ void SweptVolume::rowIntervals(int axis, std::span<const double> us, double v,
   const int i1 = (axis + 1) % 3;
   const int i2 = (axis + 2) % 3;
   struct Scratch {
-    LineHulls hulls;
+    Hulls hulls;
     std::vector<double> q1, lo, hi;
     std::vector<unsigned char> hit;
   };
@@ -254,10 +274,9 @@ void SweptVolume::rowIntervals(int axis, std::span<const double> us, double v,
     for (std::size_t j = 0; j < m; ++j) s.q1[j] = us[b + j] - tip1;
     axialExtentRow(profiles_[body.profile], body.along, s.q1.data(), v - coord(body.tip, i2), m,
                    body.linearTol, s.lo.data(), s.hi.data(), s.hit.data());
-    for (std::size_t j = 0; j < m; ++j) {
-      const Interval iv = axialInterval(body, axis, s.lo[j], s.hi[j]);
-      if (s.hit[j] && iv.hi > iv.lo) s.hulls.add(b + j, iv);
-    }
+    // Heights run along the line with the axis' sign (axialInterval).
+    mergeAxial(coord(body.tip, axis), coord(body.axis, axis) > 0.0, b, m, s.lo.data(), s.hi.data(),
+               s.hit.data(), s.hulls);
   }
   s.hulls.emit(out, ends, [&](std::size_t i) { lineIntervals(axis, us[i], v, out); });
 }
@@ -310,13 +329,7 @@ void SweptVolume::crossLinesIntervals(int axis, std::span<const double> us,
     }
     mergeBody(coord(body.tip, axis), n, s);
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (s.apart[i])
-      lineIntervals(axis, us[i], vs[i], out);
-    else if (s.any[i])
-      out.push_back(Interval{s.hullLo[i], s.hullHi[i]});
-    ends[i] = out.size();
-  }
+  s.hulls.emit(out, ends, [&](std::size_t i) { lineIntervals(axis, us[i], vs[i], out); });
 }
 
 }  // namespace mdhd::geom

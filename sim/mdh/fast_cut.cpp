@@ -33,6 +33,7 @@ struct Scratch {
   std::vector<int> newCountsMap;         // solid vertex counts after the cut, every column
   std::vector<std::uint8_t> changedMap;  // the columns that moved, every column
   std::vector<std::uint8_t> levelMarks;  // the levels a row of edges will ask for
+  std::vector<std::uint8_t> rowChanged;  // rows of a family holding a changed column
   std::vector<int> lineU, lineV;         // the x or y lines the family loop will ask for
 };
 
@@ -328,9 +329,10 @@ void fillEdgeLines(const ThreeMap& m, const IntervalCache& cache, const GridBox&
     };
     s.lineU.clear();
     s.lineV.clear();
+    s.rowChanged.assign(static_cast<std::size_t>(m.rowCount(family)), 0);
+    for (const ColumnChange& c : s.changes) s.rowChanged[family == 0 ? c.iv : c.iu] = 1;
     for (int r = 0; r < m.rowCount(family); ++r) {
-      bool rowChanged = false;
-      for (int e = 0; e <= edges && !rowChanged; ++e) rowChanged = s.changedMap[at(r, e)] != 0;
+      const bool rowChanged = s.rowChanged[r] != 0;
       const int ry = box.lo[y] + r;
       if (!rowChanged && (ry < region.lo[y] || ry > region.hi[y])) continue;
       s.levelMarks.assign(static_cast<std::size_t>(levels), 0);
