@@ -8,15 +8,19 @@
 // per second. Last, a 3-axis batch as the stock cuts it (16 short moves of each tool
 // along a curved zigzag pass): its z lines row by row (rowIntervals, the vectorised
 // body-by-body kernel) against line by line (lineIntervals), per line and per (line,
-// body) pair whose box holds the line.
+// body) pair whose box holds the line; and its x and y lines in the lowest 6 mm, in
+// batches of about a brick's (linesIntervals, body by body and piece by piece through
+// crossExtentRow) against line by line.
 //
 //   bench_swept_volume [--seconds S]   (S per case and direction, default 0.5)
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -174,6 +178,80 @@ void rowFigures(double seconds) {
   }
 }
 
+// The x and y lines of a 3-axis batch in its lowest 6 mm, in batches of ~1000 lines
+// (what fastCut asks of a 32-step brick), against line by line.
+void crossFigures(double seconds) {
+  std::printf(
+      "\nThe same batch: x and y lines of its lowest 6 mm, linesIntervals (batches of "
+      "~1000 lines) against lineIntervals (line by line)\n");
+  std::printf("%-22s %4s %7s %8s %10s %10s %10s %10s %7s\n", "tool", "dir", "lines", "pairs",
+              "line ns", "batch ns", "line ns/pr", "batch ns/pr", "speedup");
+  for (ToolShape shape : {ToolShape::kBall, ToolShape::kFlat, ToolShape::kDrill}) {
+    const ToolPart part = makeToolPart(benchTool(shape), ToolPartKind::kCutter);
+    std::vector<ToolPose> poses;
+    for (int j = 0; j <= 16; ++j) {
+      const double x = 0.37 * j;
+      poses.push_back({{x, 0.2, 2.0 - 0.02 * x * x}, {0.0, 0.0, 1.0}});
+    }
+    const SweptVolume s = SweptVolume::chainOfTranslations(part, poses);
+    const Aabb b = s.bounds();
+    std::vector<Aabb> boxes;
+    for (const Translation& t : s.translations())
+      boxes.push_back(SweptVolume::chainOfTranslations(
+                          part, std::vector<ToolPose>{{t.from, t.axis}, {t.to, t.axis}})
+                          .bounds());
+    for (int axis = 0; axis < 2; ++axis) {
+      const int i1 = (axis + 1) % 3, i2 = (axis + 2) % 3;
+      const auto range = [&](int i) {
+        std::vector<double> c;
+        const double top = i == 2 ? b.lo.z + 6.0 : b.hi[i];
+        for (double x = std::floor(b.lo[i] / kGrid) * kGrid; x <= top; x += kGrid) c.push_back(x);
+        return c;
+      };
+      std::vector<double> us, vs;
+      for (const double v : range(i2))
+        for (const double u : range(i1)) us.push_back(u), vs.push_back(v);
+      const std::size_t lines = us.size();
+      long pairs = 0;
+      for (std::size_t i = 0; i < lines; ++i)
+        for (const Aabb& ob : boxes)
+          pairs +=
+              us[i] >= ob.lo[i1] && us[i] <= ob.hi[i1] && vs[i] >= ob.lo[i2] && vs[i] <= ob.hi[i2];
+      constexpr std::size_t kBatch = 1000;
+      std::vector<Interval> out;
+      std::vector<std::size_t> ends(kBatch);
+      double lineNs = 1e300, batchNs = 1e300;
+      for (int round = 0; round < 3; ++round)
+        for (int mode = 0; mode < 2; ++mode) {
+          long done = 0;
+          const auto start = Clock::now();
+          double elapsed = 0;
+          do {
+            for (std::size_t from = 0; from < lines; from += kBatch) {
+              const std::size_t n = std::min(kBatch, lines - from);
+              out.clear();
+              if (mode == 0)
+                for (std::size_t i = from; i < from + n; ++i)
+                  s.lineIntervals(axis, us[i], vs[i], out);
+              else
+                s.linesIntervals(axis, std::span<const double>(us.data() + from, n),
+                                 std::span<const double>(vs.data() + from, n), out,
+                                 std::span<std::size_t>(ends.data(), n));
+            }
+            done += static_cast<long>(lines);
+            elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+          } while (elapsed < seconds / 6);
+          double& best = mode == 0 ? lineNs : batchNs;
+          best = std::min(best, 1e9 * elapsed / done);
+        }
+      const double perPair = static_cast<double>(lines) / static_cast<double>(pairs);
+      std::printf("%-22s %4c %7zu %8ld %10.1f %10.1f %10.1f %10.1f %7.2f\n",
+                  std::string(toolShapeName(shape)).c_str(), "xy"[axis], lines, pairs, lineNs,
+                  batchNs, lineNs * perPair, batchNs * perPair, lineNs / batchNs);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -278,5 +356,6 @@ int main(int argc, char** argv) {
     }
   }
   rowFigures(seconds);
+  crossFigures(seconds);
   return 0;
 }
