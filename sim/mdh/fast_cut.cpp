@@ -302,6 +302,7 @@ void groupByRow(const ThreeMap& m, int family, Scratch& s) {
 void fillEdgeLines(const ThreeMap& m, const IntervalCache& cache, const GridBox& region,
                    Scratch& s) {
   const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+  if (!cache.linesPay(u) && !cache.linesPay(v)) return;  // 5-axis: line by line
   const GridBox& box = m.box();
   const Columns cols(m);
   const std::size_t columns = static_cast<std::size_t>(m.columnsU()) * m.columnsV();
