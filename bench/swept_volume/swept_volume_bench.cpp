@@ -117,6 +117,29 @@ double buildRate(const ToolPart& part, const ToolPose& a, const ToolPose& b, dou
   return n / elapsed;
 }
 
+// A 3-axis batch as the stock cuts it: 16 moves of 0.37 mm of `shape`'s cutter along
+// a curved pass in x, and each move's own box (a body is asked on the lines its box
+// holds: the (line, body) pairs).
+struct Batch {
+  SweptVolume sweep;
+  std::vector<Aabb> boxes;
+};
+
+Batch batchOf(ToolShape shape) {
+  const ToolPart part = makeToolPart(benchTool(shape), ToolPartKind::kCutter);
+  std::vector<ToolPose> poses;
+  for (int j = 0; j <= 16; ++j) {
+    const double x = 0.37 * j;
+    poses.push_back({{x, 0.2, 2.0 - 0.02 * x * x}, {0.0, 0.0, 1.0}});
+  }
+  Batch b{SweptVolume::chainOfTranslations(part, poses), {}};
+  for (const Translation& t : b.sweep.translations())
+    b.boxes.push_back(SweptVolume::chainOfTranslations(
+                          part, std::vector<ToolPose>{{t.from, t.axis}, {t.to, t.axis}})
+                          .bounds());
+  return b;
+}
+
 // The z lines of a 3-axis batch, row by row against line by line.
 void rowFigures(double seconds) {
   std::printf(
@@ -125,13 +148,9 @@ void rowFigures(double seconds) {
   std::printf("%-22s %7s %8s %10s %10s %10s %10s %7s\n", "tool", "lines", "pairs", "line ns",
               "row ns", "line ns/pr", "row ns/pr", "speedup");
   for (ToolShape shape : {ToolShape::kBall, ToolShape::kFlat, ToolShape::kDrill}) {
-    const ToolPart part = makeToolPart(benchTool(shape), ToolPartKind::kCutter);
-    std::vector<ToolPose> poses;
-    for (int j = 0; j <= 16; ++j) {
-      const double x = 0.37 * j;
-      poses.push_back({{x, 0.2, 2.0 - 0.02 * x * x}, {0.0, 0.0, 1.0}});
-    }
-    const SweptVolume s = SweptVolume::chainOfTranslations(part, poses);
+    const Batch batch = batchOf(shape);
+    const SweptVolume& s = batch.sweep;
+    const std::vector<Aabb>& boxes = batch.boxes;
     const Aabb b = s.bounds();
     std::vector<double> us;
     for (double u = std::floor(b.lo.x / kGrid) * kGrid; u <= b.hi.x; u += kGrid) us.push_back(u);
@@ -139,11 +158,6 @@ void rowFigures(double seconds) {
     for (double v = std::floor(b.lo.y / kGrid) * kGrid; v <= b.hi.y; v += kGrid) vs.push_back(v);
     const long lines = static_cast<long>(us.size() * vs.size());
     // Pairs: a body is asked on a line its box holds (the batch's bodies, one per move).
-    std::vector<Aabb> boxes;
-    for (const Translation& t : s.translations())
-      boxes.push_back(SweptVolume::chainOfTranslations(
-                          part, std::vector<ToolPose>{{t.from, t.axis}, {t.to, t.axis}})
-                          .bounds());
     long pairs = 0;
     for (const double v : vs)
       for (const double u : us)
@@ -187,19 +201,10 @@ void crossFigures(double seconds) {
   std::printf("%-22s %4s %7s %8s %10s %10s %10s %10s %7s\n", "tool", "dir", "lines", "pairs",
               "line ns", "batch ns", "line ns/pr", "batch ns/pr", "speedup");
   for (ToolShape shape : {ToolShape::kBall, ToolShape::kFlat, ToolShape::kDrill}) {
-    const ToolPart part = makeToolPart(benchTool(shape), ToolPartKind::kCutter);
-    std::vector<ToolPose> poses;
-    for (int j = 0; j <= 16; ++j) {
-      const double x = 0.37 * j;
-      poses.push_back({{x, 0.2, 2.0 - 0.02 * x * x}, {0.0, 0.0, 1.0}});
-    }
-    const SweptVolume s = SweptVolume::chainOfTranslations(part, poses);
+    const Batch batch = batchOf(shape);
+    const SweptVolume& s = batch.sweep;
+    const std::vector<Aabb>& boxes = batch.boxes;
     const Aabb b = s.bounds();
-    std::vector<Aabb> boxes;
-    for (const Translation& t : s.translations())
-      boxes.push_back(SweptVolume::chainOfTranslations(
-                          part, std::vector<ToolPose>{{t.from, t.axis}, {t.to, t.axis}})
-                          .bounds());
     for (int axis = 0; axis < 2; ++axis) {
       const int i1 = (axis + 1) % 3, i2 = (axis + 2) % 3;
       const auto range = [&](int i) {

@@ -239,6 +239,39 @@ bool sameSpans(std::span<const Span> a, std::span<const Span> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Span)) == 0;
 }
 
+// After a batch fill of the lines `inFill(iu, iv)` picks (in the box) through
+// `counting`: the fill asked each such line once (a band's lines are its first
+// level's), and every line of the box then gives what a plain cache gives, the
+// fill's lines for no further query and the others for one each.
+template <class InFill>
+void expectFilledOnce(const IntervalCache& filled, const IntervalCache& single,
+                      const CountingSolid& counting, int axis, InFill inFill) {
+  const int fillQueries = counting.calls;
+  const GridBox& t = filled.touched();
+  const int u = axisU(axis), v = axisV(axis);
+  const IntervalCache::PrismBand& band = filled.prismBand();
+  ASSERT_EQ(band.axis, 2);  // the test is of lines in the band too
+  const auto key = [&](int iu, int iv) {
+    if (band.axis == u && band.holds(iu)) iu = band.lo;
+    if (band.axis == v && band.holds(iv)) iv = band.lo;
+    return std::pair(iu, iv);
+  };
+  std::set<std::pair<int, int>> known;
+  for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
+    for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu)
+      if (inFill(iu, iv)) known.insert(key(iu, iv));
+  EXPECT_EQ(static_cast<std::size_t>(fillQueries), known.size());  // each once, none outside
+  for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
+    for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu) {
+      const int before = counting.calls;
+      const auto got = filled.line(axis, iu, iv);
+      EXPECT_EQ(counting.calls - before, known.insert(key(iu, iv)).second ? 1 : 0)
+          << axis << " " << iu << " " << iv;
+      EXPECT_TRUE(sameSpans(got, single.line(axis, iu, iv))) << axis << " " << iu << " " << iv;
+    }
+  EXPECT_EQ(filled.queries(), single.queries());
+}
+
 TEST(IntervalCache, ARowFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked) {
   const GridSpec g = grid();
   const geom::SweptVolume sweep = ballChain();
@@ -256,31 +289,9 @@ TEST(IntervalCache, ARowFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked)
       rows.fillRow(axis, iv, ius);
       if (iv == t.lo[v] + 3) rows.fillRow(axis, iv, ius);
     }
-    const int filled = counting.calls;
     EXPECT_GT(counting.rows, 0);
-    // Lines in the prism band are their band's first level's (x lines: on v, y: on u).
-    const IntervalCache::PrismBand& band = rows.prismBand();
-    ASSERT_EQ(band.axis, 2);  // the test is of lines in the band too
-    const auto key = [&](int iu, int iv) {
-      if (band.axis == u && band.holds(iu)) iu = band.lo;
-      if (band.axis == v && band.holds(iv)) iv = band.lo;
-      return std::pair(iu, iv);
-    };
-    std::set<std::pair<int, int>> known;
-    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
-      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu)
-        if ((iu - (t.lo[u] - 2)) % 2 == 0) known.insert(key(iu, iv));
-    EXPECT_EQ(static_cast<std::size_t>(filled), known.size());  // each once, none outside
-    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
-      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu) {
-        const int before = counting.calls;
-        const auto got = rows.line(axis, iu, iv);
-        // Lines of the fill cost nothing more; the others one query each.
-        EXPECT_EQ(counting.calls - before, known.insert(key(iu, iv)).second ? 1 : 0)
-            << axis << " " << iu << " " << iv;
-        EXPECT_TRUE(sameSpans(got, single.line(axis, iu, iv))) << axis << " " << iu << " " << iv;
-      }
-    EXPECT_EQ(rows.queries(), single.queries());
+    expectFilledOnce(rows, single, counting, axis,
+                     [&](int iu, int) { return (iu - (t.lo[u] - 2)) % 2 == 0; });
   }
 }
 
@@ -302,29 +313,9 @@ TEST(IntervalCache, ALinesFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAske
         if ((iu + iv) % 2 == 0) ius.push_back(iu), ivs.push_back(iv);
     lines.fillLines(axis, ius, ivs);
     lines.fillLines(axis, ius, ivs);
-    const int filled = counting.calls;
     EXPECT_EQ(counting.batches, 1);
-    const IntervalCache::PrismBand& band = lines.prismBand();
-    ASSERT_EQ(band.axis, 2);  // lines in the band are their band's first level's
-    const auto key = [&](int iu, int iv) {
-      if (band.axis == u && band.holds(iu)) iu = band.lo;
-      if (band.axis == v && band.holds(iv)) iv = band.lo;
-      return std::pair(iu, iv);
-    };
-    std::set<std::pair<int, int>> known;
-    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
-      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu)
-        if ((iu + iv) % 2 == 0) known.insert(key(iu, iv));
-    EXPECT_EQ(static_cast<std::size_t>(filled), known.size());  // each once, none outside
-    for (int iv = t.lo[v]; iv <= t.hi[v]; ++iv)
-      for (int iu = t.lo[u]; iu <= t.hi[u]; ++iu) {
-        const int before = counting.calls;
-        const auto got = lines.line(axis, iu, iv);
-        EXPECT_EQ(counting.calls - before, known.insert(key(iu, iv)).second ? 1 : 0)
-            << axis << " " << iu << " " << iv;
-        EXPECT_TRUE(sameSpans(got, single.line(axis, iu, iv))) << axis << " " << iu << " " << iv;
-      }
-    EXPECT_EQ(lines.queries(), single.queries());
+    expectFilledOnce(lines, single, counting, axis,
+                     [](int iu, int iv) { return (iu + iv) % 2 == 0; });
   }
 }
 
