@@ -299,6 +299,9 @@ void groupByRow(const ThreeMap& m, int family, Scratch& s) {
 // levels in reach an edge in reach straddles) with one IntervalCache::fillLines
 // per family, where the solid answers many lines for less than one by one: the
 // same answers, computed together. `counts` must hold the counts before the cut.
+// A prefill only: a line it misses is still asked by line(), one too many costs
+// time; neither changes an answer (test AFastCutAsksItsCrossingLinesInBatches
+// holds that it misses none).
 void fillEdgeLines(const ThreeMap& m, const IntervalCache& cache, const GridBox& region,
                    Scratch& s) {
   const int a = m.axis(), u = m.uAxis(), v = m.vAxis();

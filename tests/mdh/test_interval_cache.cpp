@@ -28,6 +28,7 @@ class CountingSolid : public geom::LineSolid {
   void lineIntervals(int axis, double u, double v,
                      std::vector<geom::Interval>& out) const override {
     ++calls;
+    if (axis >= 0 && axis < 3) ++singles[axis];
     inner_.lineIntervals(axis, u, v, out);
   }
   // Rows go to the inner solid's own row form (a sweep's body-by-body pass), each
@@ -43,14 +44,19 @@ class CountingSolid : public geom::LineSolid {
                       std::span<std::size_t> ends) const override {
     calls += static_cast<int>(us.size());
     ++batches;
+    if (axis >= 0 && axis < 3) batched[axis] += static_cast<int>(us.size());
     inner_.linesIntervals(axis, us, vs, out, ends);
   }
+  bool rowsPay(int axis) const override { return inner_.rowsPay(axis); }
+  bool linesPay(int axis) const override { return inner_.linesPay(axis); }
   bool prismBand(int& axis, double& lo, double& hi) const override {
     return inner_.prismBand(axis, lo, hi);
   }
   mutable std::atomic<int> calls{0};
   mutable std::atomic<int> rows{0};
   mutable std::atomic<int> batches{0};
+  mutable std::atomic<int> singles[3] = {0, 0, 0};  // lines asked one by one, per axis
+  mutable std::atomic<int> batched[3] = {0, 0, 0};  // lines asked through linesIntervals
 
  private:
   const geom::LineSolid& inner_;
@@ -357,6 +363,35 @@ TEST(IntervalCache, LinesFillsFromTwoThreadsShareTheLinesAndAgree) {
   }
   // Every line computed exactly once, whichever thread or path got there first.
   EXPECT_EQ(counting.calls, static_cast<int>(distinct.size()));
+}
+
+// A 3-axis batch over a stock it has cut before (z maps, cut by the fast path): the x
+// and y lines the crossings need come through fastCut's gathering, in batches, all of
+// them. A line the gathering missed would still be asked, one by one: this catches the
+// gathering falling out of step with what the loop asks (which costs time, not answers).
+TEST(IntervalCache, AFastCutAsksItsCrossingLinesInBatches) {
+  const geom::SweptVolume first = ballChain();
+  const geom::ToolPart part = geom::makeToolPart(
+      geom::testing::makeTool(geom::ToolShape::kBall, 2.0, 3.0), geom::ToolPartKind::kCutter);
+  std::vector<geom::ToolPose> poses;
+  for (int j = 0; j <= 8; ++j)
+    poses.push_back({{3.1 + 0.3 * j, 3.9 + 0.01 * j * j, 1.9 - 0.04 * j}, {0, 0, 1}});
+  const geom::SweptVolume second = geom::SweptVolume::chainOfTranslations(part, poses);
+  ASSERT_TRUE(second.linesPay(0) && second.linesPay(1));
+  for (int threads : {1, 2}) {
+    StockOptions o;
+    o.brick = 8;
+    o.threads = threads;
+    Stock stock({{0, 0, 0}, {7, 7, 4}}, o);
+    stock.cut(first, {0, 0, 1});
+    CountingSolid counting(second);
+    stock.cut(counting, {0, 0, 1});
+    const int batched = counting.batched[0] + counting.batched[1];
+    const int singles = counting.singles[0] + counting.singles[1];
+    EXPECT_GT(batched, 500) << threads;
+    EXPECT_EQ(singles, 0) << threads << " threads: " << singles << " of " << batched + singles
+                          << " lines asked one by one";
+  }
 }
 
 TEST(IntervalCache, RowFillsFromTwoThreadsShareTheLinesAndAgree) {
