@@ -33,7 +33,6 @@ struct Scratch {
   std::vector<int> newCountsMap;         // solid vertex counts after the cut, every column
   std::vector<std::uint8_t> changedMap;  // the columns that moved, every column
   std::vector<std::uint8_t> levelMarks;  // the levels a row of edges will ask for
-  std::vector<std::uint8_t> rowChanged;  // rows of a family holding a changed column
   std::vector<int> lineU, lineV;         // the x or y lines the family loop will ask for
 };
 
@@ -294,19 +293,10 @@ void groupByRow(const ThreeMap& m, int family, Scratch& s) {
   }
 }
 
-// Fills the x and y lines the family loop of fastCut will ask for (rebuildRow:
-// every level a reached edge straddles after the cut; moveRowCrossings: the
-// levels in reach an edge in reach straddles) with one IntervalCache::fillLines
-// per family, where the solid answers many lines for less than one by one: the
-// same answers, computed together. `counts` must hold the counts before the cut.
-// A prefill only: a line it misses is still asked by line(), one too many costs
-// time; neither changes an answer (test AFastCutAsksItsCrossingLinesInBatches
-// holds that it misses none).
-void fillEdgeLines(const ThreeMap& m, const IntervalCache& cache, const GridBox& region,
-                   Scratch& s) {
-  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
-  if (!cache.linesPay(u) && !cache.linesPay(v)) return;  // 5-axis: line by line
-  const GridBox& box = m.box();
+// The columns' solid counts after the cut and which columns moved, over the whole
+// map (fillFamilyLines reads rows of either family from them). `counts` must hold
+// the counts before the cut.
+void columnsAfterCut(const ThreeMap& m, Scratch& s) {
   const Columns cols(m);
   const std::size_t columns = static_cast<std::size_t>(m.columnsU()) * m.columnsV();
   s.newCountsMap.assign(s.counts.begin(), s.counts.begin() + static_cast<std::ptrdiff_t>(columns));
@@ -316,52 +306,62 @@ void fillEdgeLines(const ThreeMap& m, const IntervalCache& cache, const GridBox&
     s.newCountsMap[i] = cols.solidCount(c.height);
     s.changedMap[i] = 1;
   }
+}
+
+// Fills the lines of `family` that the row loop of fastCut will ask for (rebuildRow:
+// every level a reached edge straddles after the cut; moveRowCrossings: the levels
+// in reach an edge in reach straddles) with one IntervalCache::fillLines, where the
+// solid answers many lines for less than one by one: the same answers, computed
+// together. Needs groupByRow's rows of the family and columnsAfterCut. A prefill
+// only: a line it misses is still asked by line(), one too many costs time; neither
+// changes an answer (test AFastCutAsksItsCrossingLinesInBatches holds that it misses
+// none). Kept out of line: inlined, it tips fastCut's own calls out of line.
+[[gnu::noinline]] void fillFamilyLines(const ThreeMap& m, const IntervalCache& cache,
+                                       const GridBox& region, int family, Scratch& s) {
+  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+  const int x = family == 0 ? u : v, y = family == 0 ? v : u;
+  const GridBox& box = m.box();
+  const Columns cols(m);
   const int levels = m.levels(), base = box.lo[a];
-  for (int family = 0; family < 2; ++family) {
-    const int x = family == 0 ? u : v, y = family == 0 ? v : u;
-    if (!cache.linesPay(x)) continue;
-    const bool levelIsU = axisU(x) == a;
-    const int e0 = region.lo[x] - box.lo[x], e1 = region.hi[x] - box.lo[x];
-    const int edges = m.edgesInRow(family);
-    const auto at = [&](int r, int e) {
-      return family == 0 ? static_cast<std::size_t>(r) * cols.nu + e
-                         : static_cast<std::size_t>(e) * cols.nu + r;
-    };
-    const auto mark = [&](int first, int count, int k0, int k1) {
-      for (int k = std::max(first, k0); k <= std::min(first + count - 1, k1); ++k)
-        if (k - base >= 0 && k - base < levels) s.levelMarks[k - base] = 1;
-    };
-    s.lineU.clear();
-    s.lineV.clear();
-    s.rowChanged.assign(static_cast<std::size_t>(m.rowCount(family)), 0);
-    for (const ColumnChange& c : s.changes) s.rowChanged[family == 0 ? c.iv : c.iu] = 1;
-    for (int r = 0; r < m.rowCount(family); ++r) {
-      const bool rowChanged = s.rowChanged[r] != 0;
-      const int ry = box.lo[y] + r;
-      if (!rowChanged && (ry < region.lo[y] || ry > region.hi[y])) continue;
-      s.levelMarks.assign(static_cast<std::size_t>(levels), 0);
-      int first = 0, count = 0;
-      if (rowChanged) {
-        for (int e = 0; e < edges; ++e) {
-          const std::size_t i0 = at(r, e), i1 = at(r, e + 1);
-          if (!(s.changedMap[i0] || s.changedMap[i1] || (e >= e0 && e < e1))) continue;
-          cols.straddleCounts(s.newCountsMap[i0], s.newCountsMap[i1], first, count);
-          mark(first, count, first, first + count - 1);
-        }
-      } else {
-        for (int e = e0; e < e1; ++e) {
-          cols.straddleCounts(s.counts[at(r, e)], s.counts[at(r, e + 1)], first, count);
-          mark(first, count, region.lo[a], region.hi[a]);
-        }
+  const bool levelIsU = axisU(x) == a;
+  const int e0 = region.lo[x] - box.lo[x], e1 = region.hi[x] - box.lo[x];
+  const int edges = m.edgesInRow(family);
+  const auto at = [&](int r, int e) {
+    return family == 0 ? static_cast<std::size_t>(r) * cols.nu + e
+                       : static_cast<std::size_t>(e) * cols.nu + r;
+  };
+  const auto mark = [&](int first, int count, int k0, int k1) {
+    for (int k = std::max(first, k0); k <= std::min(first + count - 1, k1); ++k)
+      if (k - base >= 0 && k - base < levels) s.levelMarks[k - base] = 1;
+  };
+  s.lineU.clear();
+  s.lineV.clear();
+  for (int r = 0; r < m.rowCount(family); ++r) {
+    const bool rowChanged = s.rowStart[r] != s.rowStart[r + 1];
+    const int ry = box.lo[y] + r;
+    if (!rowChanged && (ry < region.lo[y] || ry > region.hi[y])) continue;
+    s.levelMarks.assign(static_cast<std::size_t>(levels), 0);
+    int first = 0, count = 0;
+    if (rowChanged) {
+      for (int e = 0; e < edges; ++e) {
+        const std::size_t i0 = at(r, e), i1 = at(r, e + 1);
+        if (!(s.changedMap[i0] || s.changedMap[i1] || (e >= e0 && e < e1))) continue;
+        cols.straddleCounts(s.newCountsMap[i0], s.newCountsMap[i1], first, count);
+        mark(first, count, first, first + count - 1);
       }
-      for (int k = 0; k < levels; ++k) {
-        if (!s.levelMarks[k]) continue;
-        s.lineU.push_back(levelIsU ? base + k : ry);
-        s.lineV.push_back(levelIsU ? ry : base + k);
+    } else {
+      for (int e = e0; e < e1; ++e) {
+        cols.straddleCounts(s.counts[at(r, e)], s.counts[at(r, e + 1)], first, count);
+        mark(first, count, region.lo[a], region.hi[a]);
       }
     }
-    if (s.lineU.size() > 1) cache.fillLines(x, s.lineU, s.lineV);
+    for (int k = 0; k < levels; ++k) {
+      if (!s.levelMarks[k]) continue;
+      s.lineU.push_back(levelIsU ? base + k : ry);
+      s.lineV.push_back(levelIsU ? ry : base + k);
+    }
   }
+  if (s.lineU.size() > 1) cache.fillLines(x, s.lineU, s.lineV);
 }
 
 }  // namespace
@@ -440,11 +440,14 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
     s.counts.resize(columns);
     int* counts = s.counts.data();
     for (std::size_t i = 0; i < columns; ++i) counts[i] = cols.solidCount(cols.h[i]);
-    fillEdgeLines(map, cache, region, s);
+    // x and y lines in batches where the solid answers them so (3-axis batches).
+    const bool batches[2] = {cache.linesPay(u), cache.linesPay(v)};
+    if (batches[0] || batches[1]) columnsAfterCut(map, s);
     for (int family = 0; family < 2; ++family) {
       const int x = family == 0 ? u : v, y = family == 0 ? v : u;
       const int e0 = region.lo[x] - box.lo[x], e1 = region.hi[x] - box.lo[x];
       groupByRow(map, family, s);
+      if (batches[family]) fillFamilyLines(map, cache, region, family, s);
       for (int r = 0; r < map.rowCount(family); ++r) {
         const int begin = s.rowStart[r], end = s.rowStart[r + 1];
         if (begin == end) {

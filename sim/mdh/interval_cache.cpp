@@ -159,13 +159,9 @@ void IntervalCache::fill(int axis, int iu, int iv, LineStore::Slot& slot) const 
   store(buf, axis, slot);
 }
 
-bool IntervalCache::claim(int axis, int iu, int iv, std::vector<Claimed>& claimed) const {
-  const Lines& l = lines_[axis];
-  if (iu < l.ulo || iu > l.uhi || iv < l.vlo || iv > l.vhi) return false;
-  if (l.band == 0 && band_.holds(iu)) iu = band_.lo;  // repeats find their slot claimed
-  if (l.band == 1 && band_.holds(iv)) iv = band_.lo;
-  const std::size_t i =
-      l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
+bool IntervalCache::claim(int axis, int& iu, int& iv, std::vector<Claimed>& claimed) const {
+  std::size_t i = 0;
+  if (!slotOf(lines_[axis], iu, iv, i)) return false;  // a band's repeats find it claimed
   std::atomic<std::uint32_t>& s = store_->states_[i];
   std::uint32_t state = s.load(std::memory_order_acquire);
   if (state == stamp_ || state == stamp_ - 1) return false;
@@ -211,8 +207,8 @@ void IntervalCache::fillRow(int axis, int iv, std::span<const int> ius) const {
   us.clear();
   for (int iu : ius) {
     // In the band, u moves to the band's first level: still ascending.
-    const int bu = l.band == 0 && band_.holds(iu) ? band_.lo : iu;
-    if (claim(axis, iu, iv, claimed)) us.push_back(grid_.toMm(axisU(axis), bu));
+    int v = iv;  // mapped already
+    if (claim(axis, iu, v, claimed)) us.push_back(grid_.toMm(axisU(axis), iu));
   }
   if (claimed.empty()) return;
   const double v = grid_.toMm(axisV(axis), iv);
@@ -223,17 +219,16 @@ void IntervalCache::fillRow(int axis, int iv, std::span<const int> ius) const {
 
 void IntervalCache::fillLines(int axis, std::span<const int> ius, std::span<const int> ivs) const {
   if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
-  const Lines& l = lines_[axis];
   thread_local std::vector<Claimed> claimed;
   thread_local std::vector<double> us, vs;
   claimed.clear();
   us.clear();
   vs.clear();
   for (std::size_t j = 0; j < ius.size() && j < ivs.size(); ++j) {
-    const int iu = ius[j], iv = ivs[j];
+    int iu = ius[j], iv = ivs[j];
     if (!claim(axis, iu, iv, claimed)) continue;
-    us.push_back(grid_.toMm(axisU(axis), l.band == 0 && band_.holds(iu) ? band_.lo : iu));
-    vs.push_back(grid_.toMm(axisV(axis), l.band == 1 && band_.holds(iv) ? band_.lo : iv));
+    us.push_back(grid_.toMm(axisU(axis), iu));
+    vs.push_back(grid_.toMm(axisV(axis), iv));
   }
   if (claimed.empty()) return;
   storeClaimed(axis, claimed, [&](std::vector<geom::Interval>& out, std::span<std::size_t> ends) {

@@ -73,13 +73,8 @@ class IntervalCache {
   // Always inlined: the hottest call of a cut (every column and crossing asks).
   [[gnu::always_inline]] std::span<const Span> line(int axis, int iu, int iv) const {
     if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
-    const Lines& l = lines_[axis];
-    if (iu < l.ulo || iu > l.uhi || iv < l.vlo || iv > l.vhi) return {};
-    // Inside the solid's prism band one line answers for the whole stack.
-    if (l.band == 0 && band_.holds(iu)) iu = band_.lo;
-    if (l.band == 1 && band_.holds(iv)) iv = band_.lo;
-    const std::size_t i =
-        l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
+    std::size_t i = 0;
+    if (!slotOf(lines_[axis], iu, iv, i)) return {};
     if (store_->states_[i].load(std::memory_order_acquire) != stamp_) fillOnce(axis, iu, iv, i);
     const LineStore::Slot& slot = store_->slots_[i];
     return std::span<const Span>(slot.data, slot.count);
@@ -120,15 +115,25 @@ class IntervalCache {
     int band = -1;  // band_'s levels are on this line's u (0) or v (1) coordinate, or none
   };
   [[noreturn]] static void wrongAxis();
+  // The slot `i` of line (iu, iv), false outside the box. Inside the solid's prism
+  // band one line answers for the whole stack: iu or iv become the band's first level.
+  [[gnu::always_inline]] bool slotOf(const Lines& l, int& iu, int& iv, std::size_t& i) const {
+    if (iu < l.ulo || iu > l.uhi || iv < l.vlo || iv > l.vhi) return false;
+    if (l.band == 0 && band_.holds(iu)) iu = band_.lo;
+    if (l.band == 1 && band_.holds(iv)) iv = band_.lo;
+    i = l.base + static_cast<std::size_t>(iv - l.vlo) * l.nu + static_cast<std::size_t>(iu - l.ulo);
+    return true;
+  }
   // A slot claimed by a batch fill, with its state before the claim (restored if
   // the solid throws).
   struct Claimed {
     std::size_t slot;
     std::uint32_t was;
   };
-  // The slot of line (iu, iv) (band applied) if this thread may fill it: claimed and
-  // appended to `claimed`. False outside the box and where filled or being filled.
-  bool claim(int axis, int iu, int iv, std::vector<Claimed>& claimed) const;
+  // The slot of line (iu, iv) (slotOf: iu, iv become the line that answers) if this
+  // thread may fill it: claimed and appended to `claimed`. False outside the box and
+  // where filled or being filled.
+  bool claim(int axis, int& iu, int& iv, std::vector<Claimed>& claimed) const;
   // Asks `ask(out, ends)` for the claimed lines' intervals, stores them and marks the
   // slots filled.
   template <class Ask>
