@@ -103,7 +103,8 @@ struct CrossScratch {
 
   void reset(std::size_t n) {
     hulls.reset(n);
-    for (auto* v : {&keep, &on}) v->assign(n, 0);
+    keep.resize(n);  // both written whole before they are read
+    on.resize(n);
     hit.resize(n);
     for (auto* v : {&zeta, &h0, &za, &zb, &lo, &hi, &pz, &ph, &plo, &phi}) v->resize(n);
     idx.resize(n);
