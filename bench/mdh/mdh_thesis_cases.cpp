@@ -5,10 +5,12 @@
 // ruleset runs with seeds 1..N and prints min and (upper) median.
 //   mdh_thesis_cases [--density 100] [--seeds 3] [--rulesets few|table66|all]
 //                    [--ruleset FEFS-FFS,CTD,SPT,RS]... [--cases CS,D1,...]
-//                    [--cuts-per-motion 1] [--smoke]
+//                    [--cuts-per-motion 1] [--degrees-per-motion 5] [--smoke]
 // --ruleset R (repeatable) runs the named rulesets instead of --rulesets.
 // --cuts-per-motion k: each motion cut as k swept pieces (10 = the thesis's
 // in-between steps as separate cuts; 1 = one swept volume per motion).
+// --degrees-per-motion a: the turn of one motion of D1, D2, DS1, DS2 (lost with
+// the thesis's figures; a calibration knob like DS's pitch).
 // --smoke: density 25, one seed, three rulesets; exits 1 if a result is wrong.
 #include <algorithm>
 #include <cmath>
@@ -125,6 +127,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> named;
   bool smoke = false;
   int cutsPerMotion = 1;
+  double donutDegrees = 5;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* next = i + 1 < argc ? argv[i + 1] : "";
@@ -140,6 +143,8 @@ int main(int argc, char** argv) {
       caseFilter = "," + std::string(next) + ",", ++i;
     else if (a == "--cuts-per-motion")
       cutsPerMotion = std::atoi(next), ++i;
+    else if (a == "--degrees-per-motion")
+      donutDegrees = std::atof(next), ++i;
     else if (a == "--smoke")
       smoke = true;
     else {
@@ -148,8 +153,10 @@ int main(int argc, char** argv) {
     }
   }
   if (smoke) density = 25, seeds = 1, rulesetChoice = "few";
-  if (!(density > 0) || seeds < 1) {
-    std::fprintf(stderr, "mdh_thesis_cases: --density must be > 0 and --seeds >= 1\n");
+  if (!(density > 0) || seeds < 1 || !(donutDegrees > 0 && donutDegrees <= 360)) {
+    std::fprintf(stderr,
+                 "mdh_thesis_cases: --density must be > 0, --seeds >= 1 and "
+                 "--degrees-per-motion in (0, 360]\n");
     return 2;
   }
   for (const std::string& r : named)
@@ -171,7 +178,7 @@ int main(int argc, char** argv) {
   std::vector<Prepared> cases;
   std::vector<int> thesisIndex;
   {
-    const auto all = bench::thesisCases();
+    const auto all = bench::thesisCases(donutDegrees);
     for (std::size_t i = 0; i < all.size(); ++i) {
       if (!caseFilter.empty() && caseFilter.find("," + all[i].name + ",") == std::string::npos)
         continue;

@@ -1,5 +1,6 @@
 #include "bench/mdh/thesis_cases.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -43,10 +44,10 @@ void chain(std::vector<Motion>& out, const std::vector<geom::ToolPose>& poses) {
 
 // A ball tool leaning `tilt` towards the vertical axis through (cx, cy), its
 // sphere's centre on a path around that axis: radius r0 -> r1 and height
-// z0 -> z1 over `turns`, one motion per 5 degrees (figure 6.13's surface).
+// z0 -> z1 over `turns`, one motion per `degrees` (figure 6.13's surface).
 std::vector<Motion> donut(double tilt, double cx, double cy, double r0, double r1, double z0,
-                          double z1, double turns) {
-  const int n = static_cast<int>(std::lround(turns * 72));
+                          double z1, double turns, double degrees) {
+  const int n = std::max(1, static_cast<int>(std::lround(turns * 360 / degrees)));
   std::vector<geom::ToolPose> poses;
   for (int i = 0; i <= n; ++i) {
     const double t = double(i) / n, phi = 2 * kPi * turns * t;
@@ -114,25 +115,27 @@ ThesisCase planarCuts() {
 
 }  // namespace
 
-std::vector<ThesisCase> thesisCases() {
+std::vector<ThesisCase> thesisCases(double donutDegrees) {
   const geom::Aabb plate{{0, 0, 0}, {4, 4, 1}};
   const double d25 = 25 * kPi / 180, d45 = 45 * kPi / 180, zT = 0.6748;
   const std::string fromTable = "table 6.8 (stock, tool, torus); ";
   std::vector<ThesisCase> cases;
   cases.push_back(cylinderSpiral());
   auto ball = tool(geom::ToolShape::kBall);
-  cases.push_back(
-      {"D1", plate, ball, donut(d25, 2, 2, 1.69, 1.69, zT, zT, 1), fromTable + "one turn"});
-  cases.push_back({"D2", plate, ball, donut(d45, 2, 2, 1.69, 1.69, zT, zT, 1),
+  cases.push_back({"D1", plate, ball, donut(d25, 2, 2, 1.69, 1.69, zT, zT, 1, donutDegrees),
+                   fromTable + "one turn"});
+  cases.push_back({"D2", plate, ball, donut(d45, 2, 2, 1.69, 1.69, zT, zT, 1, donutDegrees),
                    fromTable + "45 degrees instead of 25"});
   // DS: the spiral's pitch is lost with figures 6.4/6.5. Four turns (0.1975 mm,
   // two thirds of the tool's diameter: cusps 0.037 mm high) put random
   // selection at 0.87x / 1.05x table 6.2's RS row; 3 turns gave 2.6x / 2.8x,
   // with cusps 0.078 mm high that need fallback halvings the thesis never had.
   constexpr double kSpiralTurns = 4;
-  cases.push_back({"DS1", plate, ball, donut(d25, 2, 2, 1.69, 0.9, zT, zT, kSpiralTurns),
+  cases.push_back({"DS1", plate, ball,
+                   donut(d25, 2, 2, 1.69, 0.9, zT, zT, kSpiralTurns, donutDegrees),
                    fromTable + "spiral in to radius 0.9 over 4 turns (pitch from RS)"});
-  cases.push_back({"DS2", plate, ball, donut(d45, 2, 2, 1.69, 0.9, zT, zT, kSpiralTurns),
+  cases.push_back({"DS2", plate, ball,
+                   donut(d45, 2, 2, 1.69, 0.9, zT, zT, kSpiralTurns, donutDegrees),
                    fromTable + "45 degrees, spiral in to radius 0.9 over 4 turns"});
   cases.push_back(drillEdge(true));
   cases.push_back(drillEdge(false));

@@ -28,6 +28,8 @@ struct ThesisCase {
   std::string guess;
 };
 
-std::vector<ThesisCase> thesisCases();
+// donutDegrees: the turn of one motion of the D and DS cases (the figures that
+// would fix it are lost; 5 degrees unless a calibration says otherwise).
+std::vector<ThesisCase> thesisCases(double donutDegrees = 5);
 
 }  // namespace mdhd::mdh::bench
