@@ -117,7 +117,7 @@ int faceSegments(const CubeFace& face, unsigned solid, const double* t,
   return n;
 }
 
-CubeLoops cubeLoops(unsigned solid, const double* t) {
+CubeLoops cubeLoopsRead(unsigned solid, const double* t) {
   int next[12];
   for (int& n : next) n = -1;
   std::array<std::pair<int, int>, 2> segs;
@@ -139,6 +139,36 @@ CubeLoops cubeLoops(unsigned solid, const double* t) {
     filled += size;
   }
   return loops;
+}
+
+bool hasAmbiguousFace(unsigned solid) {
+  for (const CubeFace& face : cubeFaces()) {
+    bool in[4];
+    for (int i = 0; i < 4; ++i) in[i] = (solid >> face.corners[i]) & 1u;
+    if (in[0] == in[2] && in[1] == in[3] && in[0] != in[1]) return true;
+  }
+  return false;
+}
+
+CubeLoops cubeLoops(unsigned solid, const double* t) {
+  // A pattern without an ambiguous face reads the same whatever its crossings:
+  // its loops are chained once, at first use, for all cubes.
+  struct Table {
+    std::array<CubeLoops, 256> loops{};
+    std::array<bool, 256> ambiguous{};
+  };
+  static const Table table = [] {
+    Table tab;
+    double any[12];
+    for (double& x : any) x = 0.5;
+    for (unsigned p = 0; p < 256; ++p) {
+      tab.ambiguous[p] = hasAmbiguousFace(p);
+      if (!tab.ambiguous[p]) tab.loops[p] = cubeLoopsRead(p, any);
+    }
+    return tab;
+  }();
+  solid &= 0xffu;
+  return table.ambiguous[solid] ? cubeLoopsRead(solid, t) : table.loops[solid];
 }
 
 }  // namespace mdhd::mesh

@@ -55,6 +55,13 @@ struct CubeLoops {
   std::array<int, 12> edges{};  // loop after loop
 };
 
+// Patterns without an ambiguous face come from a table built once; the rest are
+// read face by face (cubeLoopsRead).
 CubeLoops cubeLoops(unsigned solid, const double* t);
+// The loops chained from the faces' segments for this cube's crossings (what the
+// table holds for the unambiguous patterns).
+CubeLoops cubeLoopsRead(unsigned solid, const double* t);
+// Whether a face of the pattern has two diagonally opposite solid corners only.
+bool hasAmbiguousFace(unsigned solid);
 
 }  // namespace mdhd::mesh

@@ -1,5 +1,6 @@
 #include "sim/mesh/loop_triangulation.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -32,6 +33,14 @@ bool triangulateLoop(std::span<const glm::dvec3> p, std::span<const std::uint8_t
   // Newell's normal: the direction the polygon faces.
   glm::dvec3 normal(0.0);
   for (int i = 0; i < n; ++i) normal += glm::cross(p[i], p[(i + 1) % n]);
+  // The fan from k is (k, k+1, k+2), (k, k+2, k+3), ..., (k, k-2, k-1): its first and
+  // last triangles are ears (three consecutive corners), each shared by two fans, so
+  // each ear's quality is computed once (a quad's four triangles are all ears).
+  constexpr int kMaxCorners = 16;
+  double ear[kMaxCorners];
+  const bool cached = n <= kMaxCorners;
+  if (cached)
+    for (int i = 0; i < n; ++i) ear[i] = quality(p[i], p[(i + 1) % n], p[(i + 2) % n], normal);
   int bestApex = -1;
   double bestScore = 0.0;
   for (int k = 0; k < n; ++k) {
@@ -40,6 +49,10 @@ bool triangulateLoop(std::span<const glm::dvec3> p, std::span<const std::uint8_t
       const int j = (k + i) % n, j1 = (k + i + 1) % n;
       if (i >= 2 && (masks[k] & masks[j]) != 0)
         score = -1.0;
+      else if (cached && i == 1)
+        score = std::min(score, ear[k]);
+      else if (cached && i == n - 2)
+        score = std::min(score, ear[j]);
       else
         score = std::min(score, quality(p[k], p[j], p[j1], normal));
     }

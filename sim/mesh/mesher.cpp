@@ -43,14 +43,16 @@ class Mesher {
   void surfaceCube(const GridPoint& c, unsigned solid, bool owned);
   void foreignColumn(const LeafInfo& l, GridPoint c);
   void square(const GridPoint& cubeMin, int face);
-  bool solidFace(const LeafInfo& l, int faceId);
+  bool faceStates(const LeafInfo& l, int faceId);
   void mergedFace(const LeafInfo& l, int faceId);
   void partialLeaf(const LeafInfo& l);
   void uniformLeaf(const LeafInfo& l);
   double edgeT(const GridPoint& p, int axis, bool startSolid, bool owned = false);
   LoopPoint crossingPoint(const GridPoint& p, int axis, double t) const;
   void emit(std::span<const LoopPoint> loop, bool exterior);
-  void triangle(const LoopPoint& a, const LoopPoint& b, const LoopPoint& c, bool exterior);
+  // `checked`: its area is known to be above kMinDoubleArea.
+  void triangle(const LoopPoint& a, const LoopPoint& b, const LoopPoint& c, bool exterior,
+                bool checked = false);
   MeshVertex vertex(const LoopPoint& p) const {
     return MeshVertex{view_.origin() + p.g * view_.spacing(), p.key};
   }
@@ -74,7 +76,17 @@ class Mesher {
   std::vector<glm::dvec3> pts_;
   std::vector<std::uint8_t> masks_;
   std::vector<LoopPoint> rim_;
-  std::vector<std::uint8_t> column_;  // foreignColumn's corner solidity, column by column
+  // foreignColumn: the leaf's own corner columns, and the last few walked ones
+  // (keyed by leaf and position: far-side columns next to each other share two).
+  struct ForeignColumn {
+    int leaf = -1, pu = 0, pv = 0;
+    std::vector<std::uint8_t> states;
+  };
+  std::array<std::vector<std::uint8_t>, 4> ownColumn_;
+  std::array<ForeignColumn, 4> walked_;
+  std::size_t nextWalked_ = 0;
+  std::vector<std::uint8_t> topFace_;  // partialLeaf: the states of a foreign top face
+  std::vector<std::uint8_t> face_;     // exterior: the states of a boundary face
 };
 
 double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid, bool owned) {
@@ -114,13 +126,17 @@ void Mesher::emit(std::span<const LoopPoint> loop, bool exterior) {
     mid.key = VertexKey{nextInner_++, VertexKind::kInner};
   }
   const int n = static_cast<int>(loop.size());
+  // A fan chosen from more than three corners had every triangle's area checked.
+  const bool checked = plain && n > 3;
   for (const auto& t : tris_)
     triangle(t[0] == n ? mid : loop[t[0]], t[1] == n ? mid : loop[t[1]],
-             t[2] == n ? mid : loop[t[2]], exterior);
+             t[2] == n ? mid : loop[t[2]], exterior, checked);
 }
 
-void Mesher::triangle(const LoopPoint& a, const LoopPoint& b, const LoopPoint& c, bool exterior) {
-  if (glm::length(glm::cross(b.g - a.g, c.g - a.g)) <= kMinDoubleArea) ++stats_.degenerateTriangles;
+void Mesher::triangle(const LoopPoint& a, const LoopPoint& b, const LoopPoint& c, bool exterior,
+                      bool checked) {
+  if (!checked && glm::length(glm::cross(b.g - a.g, c.g - a.g)) <= kMinDoubleArea)
+    ++stats_.degenerateTriangles;
   sink_.triangle(vertex(a), vertex(b), vertex(c), exterior);
   ++stats_.triangles;
   stats_.exteriorTriangles += exterior ? 1 : 0;
@@ -211,16 +227,30 @@ void Mesher::square(const GridPoint& cubeMin, int faceId) {
   }
 }
 
-// Whether every grid vertex of the leaf's face on the stock's boundary is solid.
-bool Mesher::solidFace(const LeafInfo& l, int faceId) {
+// The states of the grid vertices of the leaf's face on the stock's boundary
+// (face_, u fastest, u and v as in CubeFace), walked once from owner to owner;
+// true if all are solid.
+bool Mesher::faceStates(const LeafInfo& l, int faceId) {
   const CubeFace& face = cubeFaces()[faceId];
   const int a = face.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  face_.clear();
+  bool all = true;
   GridPoint p{};
   p[a] = face.side == 0 ? l.lo[a] : l.hi[a];
+  // The leaf owns all but the face's far row and column (unless they lie on the
+  // stock's far sides): those are read from it without an owner lookup.
+  const GridPoint& n = view_.cubes();
+  const int ownU = l.hi[u] == n[u] ? l.hi[u] : l.hi[u] - 1;
+  const int ownV = l.hi[v] == n[v] ? l.hi[v] : l.hi[v] - 1;
+  int owner = hint_;
   for (p[v] = l.lo[v]; p[v] <= l.hi[v]; ++p[v])
-    for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u])
-      if (!solidAt(p)) return false;
-  return true;
+    for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u]) {
+      const bool in =
+          p[u] <= ownU && p[v] <= ownV ? view_.solidOwnedBy(hint_, p) : view_.solidWalk(p, owner);
+      face_.push_back(in);
+      all = all && in;
+    }
+  return all;
 }
 
 // A leaf's boundary face that is solid all over, as one polygon: every grid
@@ -311,29 +341,64 @@ void Mesher::uniformLeaf(const LeafInfo& l) {
 }
 
 // A column of cubes on the leaf's far side: some corners belong to the neighbours, and
-// their columns may hold the surface at any level. Each corner column is walked once
-// (its owner kept from vertex to vertex) instead of eight owner lookups per cube of
-// the column, and only the cubes whose corners disagree are meshed.
+// their columns may hold the surface at any level. Each corner column is read once:
+// the leaf's own from its column count (and topFace_ at a foreign top), the others
+// walked from owner to owner and kept for the next far-side column, which shares two
+// corner columns with this one. Only the cubes whose corners disagree are meshed.
 void Mesher::foreignColumn(const LeafInfo& l, GridPoint c) {
   const int a = l.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  const GridPoint& n = view_.cubes();
   const int levels = l.hi[a] - l.lo[a] + 1;
-  column_.resize(static_cast<std::size_t>(4 * levels));
+  const bool topForeign = l.hi[a] < n[a];
+  const std::uint8_t* col[4];
+  unsigned inUse = 0;  // walked_ entries this column reads
   for (int d = 0; d < 4; ++d) {
-    GridPoint p = c;
-    p[u] += d & 1;
-    p[v] += d >> 1;
-    int owner = hint_;
-    for (int k = 0; k < levels; ++k) {
-      p[a] = l.lo[a] + k;
-      column_[d * levels + k] = view_.solidWalk(p, owner);
+    const int pu = c[u] + (d & 1), pv = c[v] + (d >> 1);
+    const bool own = (pu < l.hi[u] || l.hi[u] == n[u]) && (pv < l.hi[v] || l.hi[v] == n[v]);
+    if (own) {
+      ownColumn_[d].resize(static_cast<std::size_t>(levels));
+      std::uint8_t* out = ownColumn_[d].data();
+      const int k = view_.columnSolidCount(hint_, pu, pv);
+      for (int j = 0; j < levels; ++j) out[j] = l.sign > 0 ? j < k : j >= levels - k;
+      if (topForeign)
+        out[levels - 1] = topFace_[(pv - l.lo[v]) * (l.hi[u] - l.lo[u] + 1) + (pu - l.lo[u])];
+      col[d] = out;
+      continue;
     }
+    ForeignColumn* hit = nullptr;
+    for (std::size_t i = 0; i < walked_.size(); ++i)
+      if (walked_[i].leaf == hint_ && walked_[i].pu == pu && walked_[i].pv == pv) {
+        hit = &walked_[i];
+        inUse |= 1u << i;
+      }
+    if (hit == nullptr) {
+      // The oldest entry not read by this column already.
+      while (inUse & (1u << nextWalked_)) nextWalked_ = (nextWalked_ + 1) % walked_.size();
+      inUse |= 1u << nextWalked_;
+      hit = &walked_[nextWalked_];
+      nextWalked_ = (nextWalked_ + 1) % walked_.size();
+      hit->leaf = hint_;
+      hit->pu = pu;
+      hit->pv = pv;
+      hit->states.resize(static_cast<std::size_t>(levels));
+      GridPoint p{};
+      p[u] = pu;
+      p[v] = pv;
+      int owner = hint_;
+      for (int k = 0; k < levels; ++k) {
+        p[a] = l.lo[a] + k;
+        hit->states[k] = view_.solidWalk(p, owner);
+      }
+    }
+    col[d] = hit->states.data();
   }
+  unsigned lowBit[4];
+  for (int d = 0; d < 4; ++d) lowBit[d] = 1u << (((d & 1) << u) | ((d >> 1) << v));
+  const unsigned shiftUp = 1u << a;
   for (int j = 0; j + 1 < levels; ++j) {
     unsigned solid = 0;
-    for (int i = 0; i < 8; ++i) {
-      const int d = ((i >> u) & 1) + 2 * ((i >> v) & 1);
-      if (column_[d * levels + j + ((i >> a) & 1)]) solid |= 1u << i;
-    }
+    for (int d = 0; d < 4; ++d)
+      solid |= (col[d][j] ? lowBit[d] : 0u) | (col[d][j + 1] ? lowBit[d] << shiftUp : 0u);
     if (solid == 0 || solid == 0xffu) continue;
     c[a] = l.lo[a] + j;
     surfaceCube(c, solid, false);
@@ -345,6 +410,38 @@ void Mesher::partialLeaf(const LeafInfo& l) {
   const GridPoint& n = view_.cubes();
   const int cubesA = l.hi[a] - l.lo[a], levels = cubesA + 1;
   const bool topForeign = l.hi[a] < n[a];
+  // Under a foreign top face every column's top cube is looked at: the face's
+  // vertices (other leaves own them) are read once, walking from owner to owner,
+  // instead of four owner lookups per cube.
+  const int faceU = l.hi[u] - l.lo[u] + 1;
+  if (topForeign) {
+    topFace_.resize(static_cast<std::size_t>(faceU) * (l.hi[v] - l.lo[v] + 1));
+    GridPoint p{};
+    p[a] = l.hi[a];
+    int owner = hint_;
+    for (p[v] = l.lo[v]; p[v] <= l.hi[v]; ++p[v])
+      for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u])
+        topFace_[(p[v] - l.lo[v]) * faceU + (p[u] - l.lo[u])] = view_.solidWalk(p, owner);
+  }
+  // The pattern of a cube at layer j whose lower corners the leaf owns; its upper
+  // ones come from the counts too, or from topFace_ at the top layer.
+  // Corner bit of column d (u + (d & 1), v + (d >> 1)) at the cube's lower level.
+  unsigned lowBit[4];
+  for (int d = 0; d < 4; ++d) lowBit[d] = 1u << (((d & 1) << u) | ((d >> 1) << v));
+  const unsigned shiftUp = 1u << a;  // corner i + 2^a is corner i one level up
+  const auto ownedPattern = [&](const GridPoint& c, int j, const int* counts) {
+    const bool topRead = topForeign && j + 1 == levels - 1;
+    unsigned solid = 0;
+    for (int d = 0; d < 4; ++d) {
+      const int k = counts[d];
+      const bool lower = l.sign > 0 ? j < k : j >= levels - k;
+      const bool upper =
+          topRead ? topFace_[(c[v] - l.lo[v] + (d >> 1)) * faceU + (c[u] - l.lo[u] + (d & 1))] != 0
+                  : (l.sign > 0 ? j + 1 < k : j + 1 >= levels - k);
+      solid |= (lower ? lowBit[d] : 0u) | (upper ? lowBit[d] << shiftUp : 0u);
+    }
+    return solid;
+  };
   // hint_ is this leaf: columnSolidCount reads it directly.
   GridPoint c{};
   for (c[v] = l.lo[v]; c[v] < l.hi[v]; ++c[v])
@@ -370,21 +467,12 @@ void Mesher::partialLeaf(const LeafInfo& l) {
       const int ownTop = topForeign ? cubesA - 2 : cubesA - 1;
       for (int j = j0; j <= j1; ++j) {
         c[a] = l.lo[a] + j;
-        if (j > ownTop) {
-          cube(c);
-          continue;
-        }
-        unsigned solid = 0;
-        for (int i = 0; i < 8; ++i) {
-          const int du = (i >> u) & 1, dv = (i >> v) & 1, level = j + ((i >> a) & 1);
-          const int k = counts[du + 2 * dv];
-          if (l.sign > 0 ? level < k : level >= levels - k) solid |= 1u << i;
-        }
-        surfaceCube(c, solid, true);
+        // The top layer under a foreign face: not all corners are the leaf's.
+        surfaceCube(c, ownedPattern(c, j, counts), j <= ownTop);
       }
       if (topForeign && !(j0 <= cubesA - 1 && cubesA - 1 <= j1)) {  // not met above
         c[a] = l.hi[a] - 1;
-        cube(c);
+        surfaceCube(c, ownedPattern(c, cubesA - 1, counts), false);
       }
     }
 }
@@ -406,14 +494,20 @@ void Mesher::exterior(int leaf) {
     const int u = (a + 1) % 3, v = (a + 2) % 3;
     for (int side = 0; side < 2; ++side) {
       if (side == 0 ? l.lo[a] != 0 : l.hi[a] != n[a]) continue;
-      if (solidFace(l, 2 * a + side)) {
+      if (faceStates(l, 2 * a + side)) {
         mergedFace(l, 2 * a + side);
         continue;
       }
+      // Squares without a solid corner have nothing on them (a machined top face).
+      const int fu = l.hi[u] - l.lo[u] + 1;
       GridPoint c{};
       c[a] = side == 0 ? 0 : n[a] - 1;
       for (c[v] = l.lo[v]; c[v] < l.hi[v]; ++c[v])
-        for (c[u] = l.lo[u]; c[u] < l.hi[u]; ++c[u]) square(c, 2 * a + side);
+        for (c[u] = l.lo[u]; c[u] < l.hi[u]; ++c[u]) {
+          const std::size_t i = static_cast<std::size_t>(c[v] - l.lo[v]) * fu + (c[u] - l.lo[u]);
+          if (face_[i] || face_[i + 1] || face_[i + fu] || face_[i + fu + 1])
+            square(c, 2 * a + side);
+        }
     }
   }
 }

@@ -87,6 +87,43 @@ TEST(CubeCases, EveryPatternGivesLoopsThroughEachCrossingOnce) {
   }
 }
 
+TEST(CubeCases, TheTableGivesWhatTheFacesGive) {
+  // Unambiguous patterns come from a table built once; it must hold what reading
+  // the faces gives for any crossings. Ambiguous ones are read each time.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.02, 0.98);
+  int ambiguous = 0;
+  for (unsigned mask = 0; mask < 256; ++mask) {
+    ambiguous += hasAmbiguousFace(mask);
+    for (int trial = 0; trial < 8; ++trial) {
+      double t[12];
+      for (double& x : t) x = unit(rng);
+      const CubeLoops a = cubeLoops(mask, t), b = cubeLoopsRead(mask, t);
+      ASSERT_EQ(a.count, b.count) << mask;
+      EXPECT_EQ(a.size, b.size) << mask;
+      EXPECT_EQ(a.edges, b.edges) << mask;
+    }
+  }
+  // The same count from corner coordinates: a face (axis, side) is ambiguous when
+  // its solid corners are exactly one diagonal.
+  int expected = 0;
+  for (unsigned mask = 0; mask < 256; ++mask) {
+    bool any = false;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        auto in = [&](int cu, int cv) {
+          const int c = (side << axis) | (cu << u) | (cv << v);
+          return ((mask >> c) & 1u) != 0;
+        };
+        any = any || (in(0, 0) == in(1, 1) && in(1, 0) == in(0, 1) && in(0, 0) != in(1, 0));
+      }
+    expected += any;
+  }
+  EXPECT_EQ(ambiguous, expected);
+  EXPECT_GT(ambiguous, 0);
+}
+
 TEST(CubeCases, LoneSolidCornerIsCutOffWithOutwardNormal) {
   double t[12];
   for (double& x : t) x = 0.5;
