@@ -1,6 +1,7 @@
 #include "sim/mesh/cube_cases.h"
 
 #include <cmath>
+#include <cstdint>
 
 namespace mdhd::mesh {
 
@@ -68,14 +69,31 @@ const std::array<CubeFace, 6>& cubeFaces() {
   return faces;
 }
 
-unsigned edgeFaces(int edge) {
+const std::array<unsigned, 12>& edgeFaceMasks() {
   static const std::array<unsigned, 12> masks = [] {
     std::array<unsigned, 12> m{};
     for (int f = 0; f < 6; ++f)
       for (int e : cubeFaces()[f].edges) m[e] |= 1u << f;
     return m;
   }();
-  return masks[edge];
+  return masks;
+}
+
+unsigned edgeFaces(int edge) {
+  return edgeFaceMasks()[edge];
+}
+
+unsigned crossingEdges(unsigned solid) {
+  static const std::array<std::uint16_t, 256> table = [] {
+    std::array<std::uint16_t, 256> m{};
+    for (unsigned p = 0; p < 256; ++p)
+      for (int e = 0; e < 12; ++e) {
+        const CubeEdge& ce = cubeEdges()[e];
+        if (((p >> ce.from) & 1u) != ((p >> ce.to) & 1u)) m[p] |= std::uint16_t(1u << e);
+      }
+    return m;
+  }();
+  return table[solid & 0xffu];
 }
 
 bool solidJoined(bool q00Solid, double su0, double su1, double sv0, double sv1) {

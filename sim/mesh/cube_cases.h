@@ -33,6 +33,10 @@ const std::array<CubeEdge, 12>& cubeEdges();
 const std::array<CubeFace, 6>& cubeFaces();
 // Bit f set when edge e lies on face f.
 unsigned edgeFaces(int edge);
+// The same for all twelve edges.
+const std::array<unsigned, 12>& edgeFaceMasks();
+// Bit e set when the pattern's corners differ at the ends of edge e.
+unsigned crossingEdges(unsigned solid);
 
 // The ambiguous square: two diagonally opposite solid corners. `q00Solid`
 // says which diagonal is solid; s* are the crossings (0..1 from the low end)

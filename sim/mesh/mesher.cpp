@@ -1,6 +1,7 @@
 #include "sim/mesh/mesher.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -76,6 +77,7 @@ class Mesher {
   std::vector<glm::dvec3> pts_;
   std::vector<std::uint8_t> masks_;
   std::vector<LoopPoint> rim_;
+  std::array<LoopPoint, 12> loop_;  // surfaceCube's loop being emitted
   // foreignColumn: the leaf's own corner columns, and the last few walked ones
   // (keyed by leaf and position: far-side columns next to each other share two).
   struct ForeignColumn {
@@ -152,20 +154,22 @@ void Mesher::cube(const GridPoint& c) {
 void Mesher::surfaceCube(const GridPoint& c, unsigned solid, bool owned) {
   if (solid == 0 || solid == 0xffu) return;
   const auto& edges = cubeEdges();
+  const auto& faces = edgeFaceMasks();
   double t[12];
-  for (int e = 0; e < 12; ++e) {
-    const bool s0 = (solid >> edges[e].from) & 1u, s1 = (solid >> edges[e].to) & 1u;
-    t[e] = s0 != s1 ? edgeT(cornerOf(c, edges[e].from), edges[e].axis, s0, owned) : 0.5;
+  std::fill(std::begin(t), std::end(t), 0.5);
+  for (unsigned m = crossingEdges(solid); m != 0; m &= m - 1) {
+    const int e = std::countr_zero(m);
+    t[e] = edgeT(cornerOf(c, edges[e].from), edges[e].axis, (solid >> edges[e].from) & 1u, owned);
   }
   const CubeLoops loops = cubeLoops(solid, t);
   ++stats_.surfaceCubes;
   int at = 0;
-  LoopPoint loop[12];
+  LoopPoint* loop = loop_.data();  // a member: no twelve points to initialise per cube
   for (int l = 0; l < loops.count; ++l) {
     for (int k = 0; k < loops.size[l]; ++k) {
       const int e = loops.edges[at + k];
       loop[k] = crossingPoint(cornerOf(c, edges[e].from), edges[e].axis, t[e]);
-      loop[k].faces = static_cast<std::uint8_t>(edgeFaces(e));
+      loop[k].faces = static_cast<std::uint8_t>(faces[e]);
     }
     emit(std::span<const LoopPoint>(loop, loops.size[l]), false);
     at += loops.size[l];

@@ -44,8 +44,9 @@ StockView::StockView(const mdh::Stock& stock) {
   };
   while (bucketCount() > kMaxBuckets) bucketSize_ *= 2;
   for (int a = 0; a < 3; ++a) buckets_[a] = cubes_[a] / bucketSize_ + 1;
-  bucketLeaves_.resize(static_cast<std::size_t>(bucketCount()));
-  for (int i = 0; i < leafCount(); ++i) {
+  // Flat lists (offsets into one array): a vector per bucket cost a million
+  // allocations on a fine stock.
+  const auto forEachBucket = [&](int i, auto&& f) {
     GridPoint b0{}, b1{};
     for (int a = 0; a < 3; ++a) {
       const LeafInfo& l = leaves_[i].info;
@@ -55,9 +56,15 @@ StockView::StockView(const mdh::Stock& stock) {
     }
     for (int z = b0[2]; z <= b1[2]; ++z)
       for (int y = b0[1]; y <= b1[1]; ++y)
-        for (int x = b0[0]; x <= b1[0]; ++x)
-          bucketLeaves_[x + buckets_[0] * (y + buckets_[1] * z)].push_back(i);
-  }
+        for (int x = b0[0]; x <= b1[0]; ++x) f(x + buckets_[0] * (y + buckets_[1] * z));
+  };
+  bucketStart_.assign(static_cast<std::size_t>(bucketCount()) + 1, 0);
+  for (int i = 0; i < leafCount(); ++i) forEachBucket(i, [&](int b) { ++bucketStart_[b + 1]; });
+  for (std::size_t b = 1; b < bucketStart_.size(); ++b) bucketStart_[b] += bucketStart_[b - 1];
+  bucketLeaves_.resize(bucketStart_.back());
+  std::vector<std::uint32_t> next(bucketStart_.begin(), bucketStart_.end() - 1);
+  for (int i = 0; i < leafCount(); ++i)
+    forEachBucket(i, [&](int b) { bucketLeaves_[next[b]++] = i; });
 }
 
 StockView::~StockView() = default;
@@ -111,8 +118,9 @@ int StockView::ownerOf(const GridPoint& p, int hint) const {
       throw std::out_of_range("mesh: grid vertex (" + std::to_string(p[0]) + ", " +
                               std::to_string(p[1]) + ", " + std::to_string(p[2]) +
                               ") is outside the stock");
-  for (int i : bucketLeaves_[bucketOf(p)])
-    if (owns(i, p)) return i;
+  const int b = bucketOf(p);
+  for (std::uint32_t k = bucketStart_[b]; k < bucketStart_[b + 1]; ++k)
+    if (owns(bucketLeaves_[k], p)) return bucketLeaves_[k];
   throw std::logic_error("mesh: no leaf holds grid vertex (" + std::to_string(p[0]) + ", " +
                          std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")");
 }

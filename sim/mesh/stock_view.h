@@ -95,10 +95,12 @@ class StockView {
   std::vector<Leaf> leaves_;
   int brokenLeaves_ = 0;
   // Point location: a coarse grid of buckets, each listing the leaves whose
-  // owned region meets it.
+  // owned region meets it (bucket b's are bucketLeaves_[bucketStart_[b] ..
+  // bucketStart_[b + 1])).
   int bucketSize_ = 8;
   GridPoint buckets_{};
-  std::vector<std::vector<int>> bucketLeaves_;
+  std::vector<std::uint32_t> bucketStart_;
+  std::vector<int> bucketLeaves_;
 };
 
 }  // namespace mdhd::mesh
