@@ -22,6 +22,19 @@ GridPoint cornerOf(const GridPoint& c, int corner) {
   return {c[0] + (corner & 1), c[1] + ((corner >> 1) & 1), c[2] + ((corner >> 2) & 1)};
 }
 
+// A cube's corner pattern from its four corner columns (d: u + (d & 1), v + (d >> 1)
+// on a map of axis a), each solid or not at the cube's lower and upper level.
+struct ColumnCorners {
+  ColumnCorners(int a, int u, int v) : up(1u << a) {
+    for (int d = 0; d < 4; ++d) low[d] = 1u << (((d & 1) << u) | ((d >> 1) << v));
+  }
+  unsigned bits(int d, bool lower, bool upper) const {
+    return (lower ? low[d] : 0u) | (upper ? low[d] << up : 0u);  // corner i + 2^a is i one up
+  }
+  unsigned low[4];
+  unsigned up;
+};
+
 // One polygon vertex while a loop is assembled: grid position and identity.
 struct LoopPoint {
   glm::dvec3 g{0.0};
@@ -396,13 +409,10 @@ void Mesher::foreignColumn(const LeafInfo& l, GridPoint c) {
     }
     col[d] = hit->states.data();
   }
-  unsigned lowBit[4];
-  for (int d = 0; d < 4; ++d) lowBit[d] = 1u << (((d & 1) << u) | ((d >> 1) << v));
-  const unsigned shiftUp = 1u << a;
+  const ColumnCorners corners(a, u, v);
   for (int j = 0; j + 1 < levels; ++j) {
     unsigned solid = 0;
-    for (int d = 0; d < 4; ++d)
-      solid |= (col[d][j] ? lowBit[d] : 0u) | (col[d][j + 1] ? lowBit[d] << shiftUp : 0u);
+    for (int d = 0; d < 4; ++d) solid |= corners.bits(d, col[d][j] != 0, col[d][j + 1] != 0);
     if (solid == 0 || solid == 0xffu) continue;
     c[a] = l.lo[a] + j;
     surfaceCube(c, solid, false);
@@ -427,12 +437,9 @@ void Mesher::partialLeaf(const LeafInfo& l) {
       for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u])
         topFace_[(p[v] - l.lo[v]) * faceU + (p[u] - l.lo[u])] = view_.solidWalk(p, owner);
   }
-  // The pattern of a cube at layer j whose lower corners the leaf owns; its upper
-  // ones come from the counts too, or from topFace_ at the top layer.
-  // Corner bit of column d (u + (d & 1), v + (d >> 1)) at the cube's lower level.
-  unsigned lowBit[4];
-  for (int d = 0; d < 4; ++d) lowBit[d] = 1u << (((d & 1) << u) | ((d >> 1) << v));
-  const unsigned shiftUp = 1u << a;  // corner i + 2^a is corner i one level up
+  // The pattern of a cube at layer j whose lower corners the leaf owns: from the
+  // columns' counts, the upper corners at the top layer from topFace_.
+  const ColumnCorners corners(a, u, v);
   const auto ownedPattern = [&](const GridPoint& c, int j, const int* counts) {
     const bool topRead = topForeign && j + 1 == levels - 1;
     unsigned solid = 0;
@@ -442,7 +449,7 @@ void Mesher::partialLeaf(const LeafInfo& l) {
       const bool upper =
           topRead ? topFace_[(c[v] - l.lo[v] + (d >> 1)) * faceU + (c[u] - l.lo[u] + (d & 1))] != 0
                   : (l.sign > 0 ? j + 1 < k : j + 1 >= levels - k);
-      solid |= (lower ? lowBit[d] : 0u) | (upper ? lowBit[d] << shiftUp : 0u);
+      solid |= corners.bits(d, lower, upper);
     }
     return solid;
   };
