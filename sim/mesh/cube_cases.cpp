@@ -79,10 +79,6 @@ const std::array<unsigned, 12>& edgeFaceMasks() {
   return masks;
 }
 
-unsigned edgeFaces(int edge) {
-  return edgeFaceMasks()[edge];
-}
-
 unsigned crossingEdges(unsigned solid) {
   static const std::array<std::uint16_t, 256> table = [] {
     std::array<std::uint16_t, 256> m{};

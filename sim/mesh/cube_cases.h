@@ -31,10 +31,11 @@ struct CubeFace {
 
 const std::array<CubeEdge, 12>& cubeEdges();
 const std::array<CubeFace, 6>& cubeFaces();
-// Bit f set when edge e lies on face f.
-unsigned edgeFaces(int edge);
-// The same for all twelve edges.
+// Bit f set when edge e lies on face f, for all twelve edges.
 const std::array<unsigned, 12>& edgeFaceMasks();
+inline unsigned edgeFaces(int edge) {
+  return edgeFaceMasks()[edge];
+}
 // Bit e set when the pattern's corners differ at the ends of edge e.
 unsigned crossingEdges(unsigned solid);
 

@@ -101,7 +101,13 @@ class Mesher {
   std::array<ForeignColumn, 4> walked_;
   std::size_t nextWalked_ = 0;
   std::vector<std::uint8_t> topFace_;  // partialLeaf: the states of a foreign top face
-  std::vector<std::uint8_t> face_;     // exterior: the states of a boundary face
+  // Its vertex at (pu, pv) on the leaf's u and v axes.
+  std::uint8_t& topFaceAt(const LeafInfo& l, int pu, int pv) {
+    const int u = (l.axis + 1) % 3, v = (l.axis + 2) % 3;
+    return topFace_[static_cast<std::size_t>(pv - l.lo[v]) * (l.hi[u] - l.lo[u] + 1) +
+                    (pu - l.lo[u])];
+  }
+  std::vector<std::uint8_t> face_;  // exterior: the states of a boundary face
 };
 
 double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid, bool owned) {
@@ -377,8 +383,7 @@ void Mesher::foreignColumn(const LeafInfo& l, GridPoint c) {
       std::uint8_t* out = ownColumn_[d].data();
       const int k = view_.columnSolidCount(hint_, pu, pv);
       for (int j = 0; j < levels; ++j) out[j] = l.sign > 0 ? j < k : j >= levels - k;
-      if (topForeign)
-        out[levels - 1] = topFace_[(pv - l.lo[v]) * (l.hi[u] - l.lo[u] + 1) + (pu - l.lo[u])];
+      if (topForeign) out[levels - 1] = topFaceAt(l, pu, pv);
       col[d] = out;
       continue;
     }
@@ -427,15 +432,14 @@ void Mesher::partialLeaf(const LeafInfo& l) {
   // Under a foreign top face every column's top cube is looked at: the face's
   // vertices (other leaves own them) are read once, walking from owner to owner,
   // instead of four owner lookups per cube.
-  const int faceU = l.hi[u] - l.lo[u] + 1;
   if (topForeign) {
-    topFace_.resize(static_cast<std::size_t>(faceU) * (l.hi[v] - l.lo[v] + 1));
+    topFace_.resize(static_cast<std::size_t>(l.hi[u] - l.lo[u] + 1) * (l.hi[v] - l.lo[v] + 1));
     GridPoint p{};
     p[a] = l.hi[a];
     int owner = hint_;
     for (p[v] = l.lo[v]; p[v] <= l.hi[v]; ++p[v])
       for (p[u] = l.lo[u]; p[u] <= l.hi[u]; ++p[u])
-        topFace_[(p[v] - l.lo[v]) * faceU + (p[u] - l.lo[u])] = view_.solidWalk(p, owner);
+        topFaceAt(l, p[u], p[v]) = view_.solidWalk(p, owner);
   }
   // The pattern of a cube at layer j whose lower corners the leaf owns: from the
   // columns' counts, the upper corners at the top layer from topFace_.
@@ -446,9 +450,8 @@ void Mesher::partialLeaf(const LeafInfo& l) {
     for (int d = 0; d < 4; ++d) {
       const int k = counts[d];
       const bool lower = l.sign > 0 ? j < k : j >= levels - k;
-      const bool upper =
-          topRead ? topFace_[(c[v] - l.lo[v] + (d >> 1)) * faceU + (c[u] - l.lo[u] + (d & 1))] != 0
-                  : (l.sign > 0 ? j + 1 < k : j + 1 >= levels - k);
+      const bool upper = topRead ? topFaceAt(l, c[u] + (d & 1), c[v] + (d >> 1)) != 0
+                                 : (l.sign > 0 ? j + 1 < k : j + 1 >= levels - k);
       solid |= corners.bits(d, lower, upper);
     }
     return solid;
