@@ -329,11 +329,16 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
   const geom::ToolPose& a = step.a.pose;
   const bool rapid = m.type == gcode::MotionType::kRapid;
   const bool spindleOff = m.spindle == gcode::SpindleState::kOff;
-  const bool fromLastCut = cut_end_ && cut_end_part_ == &step.parts.cutter &&
-                           cut_end_->tip == a.tip && cut_end_->axis == a.axis;
   const bool translation = a.axis == step.b.pose.axis;
-  auto fresh = fromLastCut ? geom::freshRegion(step.parts.cutter, a, step.b.pose)
-                           : std::optional<geom::FreshRegion>();
+  // Where the last cut left this cutter: the fresh region skips what it removed (a
+  // turn from its held pose into this step's first one included).
+  std::optional<geom::FreshRegion> fresh;
+  if (cut_end_ && cut_end_part_ == &step.parts.cutter) {
+    if (translation && cut_end_->tip == a.tip && cut_end_->axis == a.axis)
+      fresh = geom::freshRegion(step.parts.cutter, a, step.b.pose);
+    else
+      fresh = geom::freshRegion(step.parts.cutter, *cut_end_, step.cutter.translations());
+  }
   // A step joins the batch when it continues the last cut (which a pending batch
   // made: cut_end_ is its end) with the axis held; anything else is cut after it.
   const bool batched = fresh && translation && !rapid && !spindleOff;
@@ -361,12 +366,17 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
   }
   glm::dvec3 dir = a.axis + step.b.pose.axis;
   dir = glm::dot(dir, dir) > 1e-12 ? glm::normalize(dir) : step.b.pose.axis;
-  cut_end_.reset();
   if (m.tool != removal_tool_) closeToolRemoval(m.tool);
-  if (translation) {
+  // The pose the cut leaves the cutter held at: a turning step's last translation
+  // holds an in-between axis (SweepEnds::kMidpoints).
+  const auto& held = step.cutter.translations();
+  if (translation)
     cut_end_ = step.b.pose;
-    cut_end_part_ = &step.parts.cutter;
-  }
+  else if (!held.empty())
+    cut_end_ = geom::ToolPose{held.back().to, held.back().axis};
+  else
+    cut_end_.reset();
+  cut_end_part_ = &step.parts.cutter;
   if (batched) {
     {
       // Whether this step removes material is asked before its cut is made (the

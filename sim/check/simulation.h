@@ -165,9 +165,10 @@ class Simulation final : public gcode::MotionSink {
   SimulationOptions options_;
   double contact_tolerance_ = 0.0;
   int current_tool_ = -1;
-  // Where the last cut ended when it was a translation (whose sweep holds its end
-  // pose exactly), and with which cutter: a step starting there only needs the
-  // stock where it reaches beyond that pose (geom::freshRegion). Not copied by fork().
+  // The pose the last cut left its cutter held at (a translation's end pose, a
+  // turning step's last in-between pose), and which cutter: a step from there only
+  // needs the stock where it reaches beyond that pose (geom::freshRegion). Not
+  // copied by fork().
   std::optional<geom::ToolPose> cut_end_;
   const geom::ToolPart* cut_end_part_ = nullptr;
   CutBatch batch_;

@@ -9,6 +9,7 @@
 #include "sim/mdh/crossing_splits.h"
 #include "sim/mdh/direct_splits.h"
 #include "sim/mdh/fast_cut.h"
+#include "sim/mdh/fresh_reach.h"
 #include "sim/mdh/good_bad_map.h"
 #include "sim/mdh/isolation_splits.h"
 #include "sim/mdh/rng.h"
@@ -213,6 +214,14 @@ void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
   split(cell, c, planeFor(c, cell.box), ctx);
 }
 
+// The context for a child of a cell: its reach clipped to the fresh region again.
+CutContext within(const Cell& child, const CutContext& ctx) {
+  CutContext c = ctx;
+  if (ctx.fresh != nullptr)
+    c.reach = freshReach(ctx.grid, child.box.intersect(ctx.reach), ctx.fresh);
+  return c;
+}
+
 void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
   if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.reach).empty()) return;
   if (cell.state == CellState::kSolid) {
@@ -224,9 +233,7 @@ void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
   }
   if (!fastCutCell(cell, ctx)) slowCut(cell, ctx, fresh);
   if (cell.state == CellState::kInner) {
-    for (auto& child : cell.child) {
-      cutLeaf(*child, ctx, false);
-    }
+    for (auto& child : cell.child) cutLeaf(*child, within(*child, ctx), false);
     return;
   }
   normalize(cell);
@@ -237,7 +244,7 @@ void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
 void cutCell(Cell& cell, const CutContext& ctx) {
   if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.reach).empty()) return;
   if (cell.state == CellState::kInner) {
-    for (auto& child : cell.child) cutCell(*child, ctx);
+    for (auto& child : cell.child) cutCell(*child, within(*child, ctx));
     return;
   }
   cutLeaf(cell, ctx, true);

@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sim/geometry/fresh_region.h"
 #include "sim/mdh/cell.h"
 #include "sim/mdh/cut_counters.h"
 #include "sim/mdh/interval_cache.h"
@@ -22,6 +23,9 @@ struct CutContext {
   const IntervalCache& cache;
   // Where the cut can change anything: the cache's box, or less (Stock::cut's fresh region).
   GridBox reach;
+  // That region, when there is one: each cell's reach is clipped to it again, closer
+  // than its brick's box.
+  const geom::FreshRegion* fresh = nullptr;
   const std::vector<Rule>& rules;
   bool volumes = true;  // keep cells' volumes (and counters.removed) up to date
   bool threeWay = true;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sim/mdh/cut_cell.h"
+#include "sim/mdh/fresh_reach.h"
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/rng.h"
 #include "sim/mdh/shared_samples.h"
@@ -142,28 +143,6 @@ std::optional<CutResult> Stock::cutIfFast(const geom::LineSolid& solid,
   return result(step);
 }
 
-GridBox Stock::freshReach(const GridBox& box, const geom::FreshRegion* fresh) const {
-  if (fresh == nullptr) return box;
-  geom::Aabb mm;
-  for (int a = 0; a < 3; ++a) {
-    mm.lo[a] = grid_.toMm(a, box.lo[a]);
-    mm.hi[a] = grid_.toMm(a, box.hi[a]);
-  }
-  const geom::Aabb c = fresh->clip(mm);
-  GridBox r;
-  for (int a = 0; a < 3; ++a) {
-    if (!(c.lo[a] <= c.hi[a])) return GridBox{{1, 1, 1}, {0, 0, 0}};
-    // Outwards, and a little more for the intervals' snapping (1e-9): a point of
-    // the region inside a grid edge reaches both of its ends.
-    constexpr double kSlack = 1e-6;
-    r.lo[a] = static_cast<int>(std::clamp(std::floor(grid_.toGrid(a, c.lo[a]) - kSlack),
-                                          double(box.lo[a]), double(box.hi[a])));
-    r.hi[a] = static_cast<int>(std::clamp(std::ceil(grid_.toGrid(a, c.hi[a]) + kSlack),
-                                          double(box.lo[a]), double(box.hi[a])));
-  }
-  return r;
-}
-
 CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direction,
                              const geom::FreshRegion* fresh, BrickUndo* undo) {
   const GridBox& t = cache.touched();
@@ -179,7 +158,7 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
       for (int x = first[0]; x <= last[0]; ++x) {
         const int i = brickIndex({x, y, z});
         if (roots_[i].state == CellState::kEmpty) continue;
-        const GridBox r = freshReach(roots_[i].box.intersect(t), fresh);
+        const GridBox r = freshReach(grid_, roots_[i].box.intersect(t), fresh);
         if (r.empty()) continue;  // nothing there the earlier cuts left
         items.push_back(i);
         reach.push_back(r);
@@ -203,6 +182,7 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
     const CutContext ctx{grid_,
                          cache,
                          reach[i],
+                         fresh,
                          options_.ruleset,
                          options_.step_volumes,
                          options_.three_way,

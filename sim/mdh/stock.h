@@ -148,9 +148,6 @@ class Stock {
   CutCounters cutBricks(IntervalCache& cache, const glm::dvec3& toolDirection,
                         const geom::FreshRegion* fresh, BrickUndo* undo = nullptr);
   CutResult result(const CutCounters& step) const;
-  // The vertices of `box` a change inside `fresh` can move (crossings on edges
-  // with an end in it included): `box` itself without a region.
-  GridBox freshReach(const GridBox& box, const geom::FreshRegion* fresh) const;
   // Solid segments (grid units, merged across cells) of one grid line.
   void gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const;
 

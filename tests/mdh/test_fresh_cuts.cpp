@@ -2,6 +2,7 @@
 // what the previous step's end pose removed) leaves exactly the stock a full cut
 // leaves: same volume and intervals on every grid line, to the bit.
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -77,6 +78,65 @@ TEST(FreshCutsCheck, AWrongRegionLeavesADifferentStock) {
   Stock full(kWavyStock, testing::wavyOptions()), wrong(kWavyStock, testing::wavyOptions());
   cutChain(full, part, poses, Region::kNone);
   cutChain(wrong, part, poses, Region::kBackwards);
+  EXPECT_GT(wrong.volume(), full.volume() + 1.0);
+}
+
+// A 5-axis chain: the same zigzag with the axis turning a little every step (about
+// +-7 degrees over a row), each step swept as the check sweeps it (midpoint axes)
+// and cut with the region from where the previous step left the part held.
+std::vector<geom::ToolPose> turningZigzag() {
+  auto poses = testing::wavyRows({0, 0, 1}, 24, 0.4);
+  for (geom::ToolPose& p : poses)
+    p.axis = glm::normalize(
+        glm::dvec3(0.12 * std::sin(0.5 * p.tip.x), 0.1 * std::cos(0.4 * p.tip.x + p.tip.y), 1.0));
+  return poses;
+}
+
+double cutTurningChain(Stock& stock, const geom::ToolPart& part, bool useRegion, bool reverse) {
+  const auto poses = turningZigzag();
+  std::optional<geom::ToolPose> held;
+  int withRegion = 0;
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    const geom::ToolPose &a = poses[i - 1], &b = poses[i];
+    const auto s = geom::SweptVolume::between(part, a, b, 0, 0.01, geom::SweepEnds::kMidpoints);
+    std::optional<geom::FreshRegion> fresh;
+    if (useRegion && held) {
+      if (reverse) {  // wrong on purpose: the turns backwards, each translation's region reversed
+        std::vector<geom::Translation> back;
+        for (const geom::Translation& t : s.translations()) back.push_back({t.to, t.from, t.axis});
+        fresh = geom::freshRegion(part, *held, back);
+        if (!fresh) fresh = geom::FreshRegion{};
+      } else {
+        fresh = geom::freshRegion(part, *held, s.translations());
+      }
+    }
+    if (fresh) ++withRegion;
+    stock.cut(s, a.axis, fresh ? &*fresh : nullptr);
+    held = geom::ToolPose{s.translations().back().to, s.translations().back().axis};
+  }
+  return withRegion;
+}
+
+TEST(FreshCutsTurning, LeaveExactlyTheStockOfFullCuts) {
+  for (geom::ToolShape shape : {geom::ToolShape::kBall, geom::ToolShape::kBull}) {
+    const geom::ToolPart part = testing::cutterPart(shape, 3.0);
+    Stock full(kWavyStock, testing::wavyOptions()), fresh(kWavyStock, testing::wavyOptions());
+    cutTurningChain(full, part, false, false);
+    // Every step but the first has a region: the held poses share the pivot.
+    EXPECT_EQ(cutTurningChain(fresh, part, true, false), int(turningZigzag().size()) - 2);
+    EXPECT_LT(full.volume(), 0.97 * 12 * 12 * 8);
+    EXPECT_EQ(fresh.volume(), full.volume());
+    EXPECT_EQ(testing::differences(testing::allIntervals(fresh), testing::allIntervals(full)), 0);
+    EXPECT_EQ(fresh.stats().leaves, full.stats().leaves);
+    fresh.checkInvariants();
+  }
+}
+
+TEST(FreshCutsTurning, AWrongRegionLeavesADifferentStock) {
+  const geom::ToolPart part = testing::cutterPart(geom::ToolShape::kBall, 3.0);
+  Stock full(kWavyStock, testing::wavyOptions()), wrong(kWavyStock, testing::wavyOptions());
+  cutTurningChain(full, part, false, false);
+  cutTurningChain(wrong, part, true, true);
   EXPECT_GT(wrong.volume(), full.volume() + 1.0);
 }
 
