@@ -83,12 +83,13 @@ void checkTolerance(double tolerance) {
 
 namespace {
 
-// The bound of SweptVolume::between with n segments turning th in all: a point at
-// `reach` from the pivot turns by at most th / 2n away from its pose's axis, and the
-// pivot (at `height` on the axis) runs on a chord of its arc, off by the sagitta.
-double betweenErrorBound(double th, int n, double reach, double height) {
+// The bound of SweptVolume::between with n segments turning th in all: the held axis
+// is at most th / 2n from the true one, which moves the surface by at most `rate`
+// (ToolPart::turnRate about the pivot) per radian, and the pivot (at `height` on the
+// axis) runs on a chord of its arc, off by the sagitta.
+double betweenErrorBound(double th, int n, double rate, double height) {
   const double step = th / n;
-  return 2.0 * reach * std::sin(step / 4.0) + std::abs(height) * step * step / 4.0;
+  return rate * step / 2.0 + std::abs(height) * step * step / 4.0;
 }
 
 }  // namespace
@@ -105,12 +106,11 @@ int sweepSegments(const ToolPart& part, const ToolPose& a, const ToolPose& b, in
   if (steps > 0) return steps;
   if (th == 0.0) return 1;
   checkTolerance(tolerance);
-  const double h = part.centreHeight();
-  const double reach = part.reach(h);
-  // The turn alone needs 2 reach sin(th / 4n) <= tolerance; the sagitta adds a little.
-  const double halfTurn = 2.0 * std::asin(std::min(1.0, tolerance / (2.0 * reach)));
-  double n = std::max(1.0, std::ceil(th / (2.0 * halfTurn)));
-  while (n <= kMaxSegments && betweenErrorBound(th, static_cast<int>(n), reach, h) > tolerance)
+  const double h = part.turnPivot();
+  const double rate = part.turnRate(h);
+  // The turn alone needs rate th / 2n <= tolerance; the sagitta adds a little.
+  double n = std::max(1.0, std::ceil(rate * th / (2.0 * tolerance)));
+  while (n <= kMaxSegments && betweenErrorBound(th, static_cast<int>(n), rate, h) > tolerance)
     n += std::max(1.0, std::floor(n / 64));
   if (!(n <= kMaxSegments))
     throw std::invalid_argument("swept volume: tolerance " + std::to_string(tolerance) +
@@ -127,10 +127,10 @@ SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const 
   const double th = axisAngle(pa.axis, pb.axis);
   if (th == 0.0) return SweptVolume(part, {Translation{pa.tip, pb.tip, pa.axis}}, 0.0);
   // Pose j (at j/n) holds its axis from (j - 1/2)/n to (j + 1/2)/n, clamped to [0, 1].
-  // Turning about the part's centre instead of its tip halves the reach that the
-  // turn moves, so half as many steps meet the tolerance; the centre's path is an arc
+  // Turning about a point up the axis instead of the tip moves the surface about half
+  // as far, so half as many steps meet the tolerance; that point's path is an arc
   // that each step replaces by its chord.
-  const double h = part.centreHeight();
+  const double h = part.turnPivot();
   auto centre = [&](double f) {
     const ToolPose q = interpolatePose(pa, pb, f);
     return q.tip + h * q.axis;
@@ -144,7 +144,7 @@ SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const 
       moves.push_back(
           Translation{centre(double(j) / n) - h * w, centre(double(j + 1) / n) - h * w, w});
     }
-    return SweptVolume(part, moves, betweenErrorBound(th, n, part.reach(h), h));
+    return SweptVolume(part, moves, betweenErrorBound(th, n, part.turnRate(h), h));
   }
   for (int j = 0; j <= n; ++j) {
     const glm::dvec3 w = interpolatePose(pa, pb, double(j) / n).axis;
@@ -152,7 +152,7 @@ SweptVolume SweptVolume::between(const ToolPart& part, const ToolPose& a, const 
     const glm::dvec3 to = j == n ? pb.tip : centre((j + 0.5) / n) - h * w;
     moves.push_back(Translation{from, to, w});
   }
-  return SweptVolume(part, moves, betweenErrorBound(th, n, part.reach(h), h));
+  return SweptVolume(part, moves, betweenErrorBound(th, n, part.turnRate(h), h));
 }
 
 SweptVolume SweptVolume::chainOfTranslations(const ToolPart& part,

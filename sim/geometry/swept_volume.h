@@ -36,9 +36,9 @@ class SweptVolume final : public LineSolid {
   // The part moving from `a` to `b`: tip on the segment, axis along the great circle
   // (slerp). steps > 0: that many equal segments; steps == 0: as many as keep
   // errorBound() <= tolerance (one for a pure translation). The pose at j/n holds its
-  // axis from (j - 1/2)/n to (j + 1/2)/n while the part's centre (centreHeight) runs
-  // on the chord of its path: the bound is the turn of half a segment at the reach
-  // from the centre plus the chord's sagitta. The end poses are exact (`ends`
+  // axis from (j - 1/2)/n to (j + 1/2)/n while the part's pivot (turnPivot) runs on
+  // the chord of its path: the bound is the turn of half a segment at the part's
+  // turnRate about the pivot plus the chord's sagitta. The end poses are exact (`ends`
   // kExact; kMidpoints: one translation fewer, the ends within the bound). Throws
   // std::invalid_argument for a non-finite pose, a zero axis, opposite axes (no
   // unique great circle: split the move) or a tolerance that is not > 0 when needed.

@@ -149,7 +149,7 @@ std::optional<FreshRegion> freshRegion(const ToolPart& part, const ToolPose& hel
                                        std::span<const Translation> moves) {
   if (part.empty()) return std::nullopt;
   constexpr double kSamePivot = 1e-9;  // mm
-  const double h = part.centreHeight();
+  const double h = part.turnPivot();
   FreshRegion region;
   ToolPose last = held;
   for (const Translation& t : moves) {

@@ -38,7 +38,7 @@ void addTurnRegion(const ToolPart& part, double pivotHeight, const glm::dvec3& p
 // axis), the part standing at `held` before it (where the last cut left it): the
 // union of each translation's region (freshRegion) and of the turns between held
 // poses (from `held` to the first start, from each end to the next start), which
-// SweptVolume::between makes about the point at part.centreHeight() on the axis.
+// SweptVolume::between makes about the point at part.turnPivot() on the axis.
 // Nothing when two consecutive held poses do not share that point (within 1e-9 mm,
 // the interpolation's rounding): they are then no turn about it.
 std::optional<FreshRegion> freshRegion(const ToolPart& part, const ToolPose& held,

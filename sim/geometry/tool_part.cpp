@@ -91,6 +91,54 @@ double ToolPart::centreHeight() const {
   return 0.5 * (lo + hi);
 }
 
+double ToolPart::turnRate(double height) const {
+  double rate = 0.0;
+  auto crease = [&](double r, double z) { rate = std::max(rate, std::hypot(r, z - height)); };
+  for (const ConvexBody& b : bodies) {
+    for (std::size_t i = 0; i < b.pieces.size(); ++i) {
+      const RevolvedPiece& p = b.pieces[i];
+      if (p.sphere) {
+        rate = std::max(rate, std::abs(p.centre - height));
+      } else if (p.z1 > p.z0) {
+        // |z + r r'| / sqrt(1 + r'^2) is linear over sqrt(const) on a frustum: its ends.
+        const double slope = (p.r1 - p.r0) / (p.z1 - p.z0);
+        const double g0 = p.z0 - height + p.r0 * slope, g1 = p.z1 - height + p.r1 * slope;
+        rate = std::max(rate, std::max(std::abs(g0), std::abs(g1)) / std::hypot(1.0, slope));
+      }
+      // The rim below the piece (a face's edge, a cone's apex, a crease between pieces);
+      // a ball zone's pole and smooth joins are none.
+      if (i == 0 ? !(p.sphere && p.r0 == 0.0) : !smoothJoin(b.pieces[i - 1], p)) crease(p.r0, p.z0);
+    }
+    const RevolvedPiece& top = b.pieces.back();
+    if (!(top.sphere && top.r1 == 0.0)) crease(top.r1, top.z1);
+  }
+  return rate;
+}
+
+double ToolPart::turnPivot() const {
+  if (bodies.empty()) return 0.0;
+  // turnRate is a maximum of convex functions of the height (absolute values of linear
+  // ones, hypotenuses): a golden-section search over the part's height finds its least.
+  double lo = bodies.front().bottom(), hi = bodies.front().top();
+  for (const ConvexBody& b : bodies) {
+    lo = std::min(lo, b.bottom());
+    hi = std::max(hi, b.top());
+  }
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
+  double f1 = turnRate(x1), f2 = turnRate(x2);
+  for (int i = 0; i < 80 && hi - lo > 1e-9 * (1.0 + std::abs(hi)); ++i) {
+    if (f1 <= f2) {
+      hi = x2, x2 = x1, f2 = f1;
+      x1 = hi - phi * (hi - lo), f1 = turnRate(x1);
+    } else {
+      lo = x1, x1 = x2, f1 = f2;
+      x2 = lo + phi * (hi - lo), f2 = turnRate(x2);
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
 namespace {
 
 // Frustums through points of the corner arc (centre (a, rc) in the rho-z plane), as

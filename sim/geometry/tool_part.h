@@ -58,6 +58,16 @@ struct ToolPart {
   double reach(double height = 0.0) const;
   // Half-way between the lowest and highest point: the pivot with the least reach.
   double centreHeight() const;
+  // How far the part's surface moves at most (Hausdorff distance) per radian its axis
+  // turns about the point at `height` on it: the rate of its support function, at a
+  // point the part of its distance from the pivot square to the normal. A ball zone
+  // moves as its centre does, a side by |z + r r'| / sqrt(1 + r'^2) (z above the pivot),
+  // a flat face by its radius, a rim or crease by its whole distance. <= reach(height).
+  double turnRate(double height) const;
+  // The height on the axis with the least turnRate: the pivot SweptVolume::between
+  // turns the part about (a ball cutter's lies above its centre height, where the
+  // flutes' top rim and the ball's centre move alike).
+  double turnPivot() const;
   bool empty() const { return bodies.empty(); }
 };
 

@@ -119,16 +119,17 @@ TEST(FiveAxisSweep, MidpointStepsKeepTheBoundWithOneTranslationFewer) {
     EXPECT_GT(compare(coarse, Reference{part, a, b}, tol + 1e-4).wrong, 0);
   }
   // A 5-axis finishing move (the bench dome's: 15 degrees tilt, C turning 0.3 degrees,
-  // 30 mm flutes): two translations instead of three for the same bound.
+  // 30 mm flutes): one translation instead of two for the same bound (about the
+  // pivot of least turn rate, 16.7 mm up, the surface moves 13.7 mm a radian).
   Tool t = makeTool(ToolShape::kBall, 6.0, 30.0);
   t.length = 60.0;
   const ToolPart part = makeToolPart(t, ToolPartKind::kCutter);
   const double c = 0.3 * testing::kPi / 180.0;
   const ToolPose a{{0, 0, 0}, tilted(15, {1, 0, 0})};
   const ToolPose b{{0.5, 0, -0.05}, tilted(15, {std::cos(c), std::sin(c), 0})};
-  EXPECT_EQ(SweptVolume::between(part, a, b, 0, 0.01).translations().size(), 3u);
+  EXPECT_EQ(SweptVolume::between(part, a, b, 0, 0.01).translations().size(), 2u);
   EXPECT_EQ(SweptVolume::between(part, a, b, 0, 0.01, SweepEnds::kMidpoints).translations().size(),
-            2u);
+            1u);
 }
 
 TEST(FiveAxisSweep, TurningAboutTheTipAlone) {
@@ -143,22 +144,26 @@ TEST(FiveAxisSweep, TurningAboutTheTipAlone) {
   EXPECT_GT(r.decided, 1000);
 }
 
-TEST(FiveAxisSweep, SegmentCountFollowsTheChordBound) {
+TEST(FiveAxisSweep, SegmentCountFollowsTheTurnRateBound) {
   const ToolPart part = makeToolPart(makeTool(ToolShape::kBall), ToolPartKind::kCutter);
-  EXPECT_NEAR(part.reach(), std::hypot(3.0, 12.0), 1e-12);
-  EXPECT_EQ(part.centreHeight(), 6.0);
-  const double reach = part.reach(6.0);  // about the centre: hypot(3, 6)
-  EXPECT_NEAR(reach, std::hypot(3.0, 6.0), 1e-12);
+  // Ball r = 3 (centre 3 mm up), 12 mm of flutes: the pivot where the ball's centre and
+  // the flutes' top rim move alike, p - 3 = hypot(3, 12 - p): p = 8, rate 5 (about the
+  // centre height 6 the rim would move hypot(3, 6) = 6.7 a radian).
+  const double pivot = part.turnPivot();
+  EXPECT_NEAR(pivot, 8.0, 1e-6);
+  EXPECT_NEAR(part.turnRate(8.0), 5.0, 1e-12);
+  EXPECT_NEAR(part.turnRate(6.0), std::hypot(3.0, 6.0), 1e-12);
+  const double rate = part.turnRate(pivot);
   const ToolPose a{{0, 0, 0}, {0, 0, 1}};
   const ToolPose b{{0, 0, 0}, tilted(30, {1, 0, 0})};
   const double th = testing::kPi / 6;
   for (double tol : {0.1, 0.01, 0.001}) {
     const int n = sweepSegments(part, a, b, 0, tol);
-    // The turn alone needs n >= th / (4 asin(tol / (2 reach))); the sagitta a little more.
-    const double turnOnly = std::ceil(th / (4 * std::asin(tol / (2 * reach))));
+    // The turn alone needs n >= rate th / 2 tol; the sagitta a little more.
+    const double turnOnly = std::ceil(rate * th / (2 * tol));
     EXPECT_GE(n, turnOnly) << tol;
     EXPECT_LE(n, 1.05 * turnOnly + 1) << tol;
-    const double bound = 2 * reach * std::sin(th / n / 4) + 6.0 * (th / n) * (th / n) / 4;
+    const double bound = rate * (th / n) / 2 + pivot * (th / n) * (th / n) / 4;
     EXPECT_LE(bound, tol) << tol;
     const SweptVolume s = SweptVolume::between(part, a, b, 0, tol);
     EXPECT_DOUBLE_EQ(s.errorBound(), bound);
