@@ -155,7 +155,11 @@ nlohmann::json simulate(const Case& c, double density, int threads, int batch, b
           {"probe_ms", r.timing.probe_ms},
           {"batches", sim.cutBatchStats().batches},
           {"batched_steps", sim.cutBatchStats().steps},
-          {"refused", sim.cutBatchStats().refused}};
+          {"refused", sim.cutBatchStats().refused},
+          {"overhang_events", r.mdh.overhangEvents},
+          {"resamples", r.mdh.resamples},
+          {"forced_cells", r.mdh.forcedCells},
+          {"splits", r.mdh.splits()}};
 }
 
 // The run in a child process, so that its peak memory is its own.
@@ -348,6 +352,11 @@ int main(int argc, char** argv) {
       std::printf("  cut batches %lld of %lld steps, %lld refused (cut again step by step)\n",
                   r["batches"].get<long long>(), r["batched_steps"].get<long long>(),
                   r["refused"].get<long long>());
+      // How often a cut left the fast path (a cell's direction no longer held it).
+      std::printf(
+          "  slow path: %lld overhang events, %lld resamples, %lld splits, %lld forced cells\n",
+          r["overhang_events"].get<long long>(), r["resamples"].get<long long>(),
+          r["splits"].get<long long>(), r["forced_cells"].get<long long>());
       if (c.name == "dome 3-axis") ours.push_back({d, wall, r["overcut_mm"].get<double>()});
       if (withFreecad && c.name == "dome 3-axis") {
         const nlohmann::json f = freecad(work, peerGcode, d);
