@@ -1,6 +1,7 @@
 #include "sim/mdh/cut_cell.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -222,16 +223,53 @@ CutContext within(const Cell& child, const CutContext& ctx) {
   return c;
 }
 
+// A solid cell's first cut, when the guessed direction `d` cannot hold it: the other
+// directions on the fast path, `d`'s opposite first (a tilted tool's flutes leave
+// material above them), then the other axes by the tool's component, its sign first.
+// A solid map costs nothing to make and a failing fast cut stops at its first
+// overhanging column, so this is far cheaper than unpacking the cell (slowCut), which
+// would pick one of these directions anyway (validDirection) when one holds. Counted
+// as the overhang event and resample slowCut would count. False: none holds (the
+// cell keeps a solid map in `d` for slowCut).
+bool firstCutElsewhere(Cell& cell, const CutContext& ctx, Direction d, bool fresh) {
+  std::array<Direction, 5> order;
+  std::size_t n = 0;
+  order[n++] = Direction{d.axis, -d.sign};
+  int others[2] = {(d.axis + 1) % 3, (d.axis + 2) % 3};
+  if (std::abs(ctx.toolDirection[others[1]]) > std::abs(ctx.toolDirection[others[0]]))
+    std::swap(others[0], others[1]);
+  for (int a : others) {
+    const int sign = ctx.toolDirection[a] < 0.0 ? -1 : 1;
+    order[n++] = Direction{a, sign};
+    order[n++] = Direction{a, -sign};
+  }
+  for (const Direction& other : order) {
+    *cell.map = ThreeMap(cell.box, other, ctx.threeWay);
+    if (fastCutCell(cell, ctx)) {
+      if (fresh) ctx.counters.overhangEvents += 1;
+      ctx.counters.resamples += 1;
+      ctx.counters.touched = true;
+      return true;
+    }
+  }
+  *cell.map = ThreeMap(cell.box, d, ctx.threeWay);
+  return false;
+}
+
 void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
   if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.reach).empty()) return;
+  bool done = false;
   if (cell.state == CellState::kSolid) {
     // Probe first: most solid cells under the tool's box lose nothing.
     if (!toolRemovesSomeVertex(cell.box.intersect(ctx.reach), ctx.cache)) return;
     const Direction d = guessDirection(ctx.toolDirection);
     cell.map = std::make_unique<ThreeMap>(cell.box, d, ctx.threeWay);
     cell.state = CellState::kPartial;
+    done = fastCutCell(cell, ctx) || firstCutElsewhere(cell, ctx, d, fresh);
+  } else {
+    done = fastCutCell(cell, ctx);
   }
-  if (!fastCutCell(cell, ctx)) slowCut(cell, ctx, fresh);
+  if (!done) slowCut(cell, ctx, fresh);
   if (cell.state == CellState::kInner) {
     for (auto& child : cell.child) cutLeaf(*child, within(*child, ctx), false);
     return;
