@@ -81,15 +81,11 @@ TEST(FreshCutsCheck, AWrongRegionLeavesADifferentStock) {
   EXPECT_GT(wrong.volume(), full.volume() + 1.0);
 }
 
-// A 5-axis chain: the same zigzag with the axis turning a little every step (about
-// +-7 degrees over a row), each step swept as the check sweeps it (midpoint axes)
-// and cut with the region from where the previous step left the part held.
+// A 5-axis chain (the zigzag with a turning axis), each step swept as the check sweeps
+// it (midpoint axes) and cut with the region from where the previous step left the
+// part held.
 std::vector<geom::ToolPose> turningZigzag() {
-  auto poses = testing::wavyRows({0, 0, 1}, 24, 0.4);
-  for (geom::ToolPose& p : poses)
-    p.axis = glm::normalize(
-        glm::dvec3(0.12 * std::sin(0.5 * p.tip.x), 0.1 * std::cos(0.4 * p.tip.x + p.tip.y), 1.0));
-  return poses;
+  return testing::turningRows(24, 0.4);
 }
 
 double cutTurningChain(Stock& stock, const geom::ToolPart& part, bool useRegion, bool reverse) {

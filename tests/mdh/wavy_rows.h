@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include "sim/geometry/tool_pose.h"
 #include "sim/mdh/stock.h"
 
@@ -35,6 +37,16 @@ inline std::vector<geom::ToolPose> wavyRows(const glm::dvec3& axis, int steps, d
       const double z = 5.0 + 0.8 * std::sin(0.7 * x) * std::cos(0.5 * y);
       poses.push_back({{x, y, z}, axis});
     }
+  return poses;
+}
+
+// The same zigzag with the axis turning a little every step (about +-7 degrees over a
+// row): a 5-axis chain.
+inline std::vector<geom::ToolPose> turningRows(int steps, double spacing) {
+  auto poses = wavyRows({0, 0, 1}, steps, spacing);
+  for (geom::ToolPose& p : poses)
+    p.axis = glm::normalize(
+        glm::dvec3(0.12 * std::sin(0.5 * p.tip.x), 0.1 * std::cos(0.4 * p.tip.x + p.tip.y), 1.0));
   return poses;
 }
 
