@@ -26,7 +26,7 @@ struct Scratch {
   std::vector<int> next;
   std::vector<Span> before, after, pieces;
   std::vector<double> heights, row, oldCrossings;
-  std::vector<std::uint8_t> changed, was, now;
+  std::vector<std::uint8_t> changed;
   std::vector<int> counts;               // solid vertex count of every column before the cut
   std::vector<int> newCounts;            // of the row being rebuilt, after it
   std::vector<int> rowLines;             // the z lines a row of columns asks for
@@ -142,37 +142,53 @@ bool cutZColumn(const ThreeMap& m, double h, std::span<const Span> tool, Scratch
 // every cell holding that edge computes it.
 bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
                    const std::array<int, 3>& base, const IntervalCache& cache, const GridBox& reach,
-                   Scratch& s, double& out) {
+                   double& out) {
   const int a = m.axis(), n = m.levels(), lo = m.box().lo[a];
   const bool up = m.direction().sign > 0;
-  s.was.resize(n);
-  s.now.resize(n);
-  bool changed = false;
-  std::array<int, 3> p = base;
-  for (int k = 0; k < n; ++k) {
-    s.was[k] = s.now[k] = m.solidAt(h, lo + k);
-    if (!s.was[k] || lo + k < reach.lo[a] || lo + k > reach.hi[a]) continue;
-    p[a] = lo + k;
-    if (toolRemovesVertex(cache, p)) s.now[k] = 0, changed = true;
+  // The column's solid vertices before the cut are one run from the base face,
+  // levels [s0, s1] (up: from 0; down: to n - 1), exactly as solidAt says.
+  int s0 = 0, s1 = n - 1;
+  if (up) {
+    s1 = static_cast<int>(std::clamp(std::floor(h - lo), -1.0, n - 1.0));
+    while (s1 >= 0 && !m.solidAt(h, lo + s1)) --s1;
+    while (s1 + 1 < n && m.solidAt(h, lo + s1 + 1)) ++s1;
+  } else {
+    s0 = static_cast<int>(std::clamp(std::ceil(h - lo), 0.0, double(n)));
+    while (s0 < n && !m.solidAt(h, lo + s0)) ++s0;
+    while (s0 > 0 && m.solidAt(h, lo + s0 - 1)) --s0;
   }
-  if (!changed && tool.empty()) {
+  // Only solid vertices in the reach can go (the vertex rule: along their z lines).
+  // Walked from the base: after the first that goes, every solid one must go too, or
+  // the column is no longer one run from the base.
+  const int c0 = std::max(s0, reach.lo[a] - lo), c1 = std::min(s1, reach.hi[a] - lo);
+  std::array<int, 3> p = base;
+  int first = -1;  // the first vertex removed, counted from the base
+  for (int i = 0; i <= c1 - c0; ++i) {
+    const int k = up ? c0 + i : c1 - i;
+    p[a] = lo + k;
+    if (toolRemovesVertex(cache, p)) {
+      if (first < 0) first = k;
+    } else if (first >= 0) {
+      return false;
+    }
+  }
+  if (first < 0 && tool.empty()) {
     out = h;
     return true;
   }
-  // Solid vertices counted from the base face must be all of them.
-  int count = 0;
-  while (count < n && s.now[up ? count : n - 1 - count]) ++count;
-  for (int k = count; k < n; ++k)
-    if (s.now[up ? k : n - 1 - k]) return false;
+  // Solid vertices beyond the reach stay: past a removed one that is an overhang.
+  if (first >= 0 && (up ? s1 > c1 : s0 < c0)) return false;
+  // Solid vertices counted from the base face after the cut.
+  const int count = first >= 0 ? (up ? first : n - 1 - first) : s1 - s0 + 1;
   if (count == 0) {
     out = m.emptyHeight();
   } else if (count == n) {
     out = m.fullHeight();
   } else {
-    const int e = up ? count - 1 : n - 1 - count;  // the edge (lo + e, lo + e + 1) crosses
-    const bool o0 = s.was[e], o1 = s.was[e + 1];
-    out = edgeCrossingAfterCut(o0, o1, o0 != o1 ? h : std::nan(""), s.now[e], s.now[e + 1], lo + e,
-                               tool);
+    // The edge (lo + e, lo + e + 1) crosses: its base-side end is kept, the other not.
+    const int e = up ? count - 1 : n - 1 - count;
+    const bool o0 = e >= s0 && e <= s1, o1 = e + 1 >= s0 && e + 1 <= s1;
+    out = edgeCrossingAfterCut(o0, o1, o0 != o1 ? h : std::nan(""), up, !up, lo + e, tool);
   }
   return true;
 }
@@ -414,7 +430,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
       base[u] = cu;
       base[v] = cv;
       const bool ok = a == 2 ? cutZColumn(map, h, tool, s, nh)
-                             : cutSideColumn(map, h, tool, base, cache, reach, s, nh);
+                             : cutSideColumn(map, h, tool, base, cache, reach, nh);
       if (!ok) return FastCut::kOverhang;
       if (!(nh == h)) s.changes.push_back({iu, iv, nh});
     }
