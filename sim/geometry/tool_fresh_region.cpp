@@ -123,7 +123,8 @@ void addTurnRegion(const ToolPart& part, double pivotHeight, const glm::dvec3& p
   const double angle = axisAngle(from, to);
   if (angle == 0.0 || part.empty()) return;
   const glm::dvec3 k = glm::normalize(glm::cross(from, to));
-  const glm::dvec3 u = glm::cross(k, glm::normalize(from + to));  // at the turn's middle
+  const glm::dvec3 mid = from + to;
+  const glm::dvec3 u = angle > 2.0 ? glm::dvec3(0.0) : glm::cross(k, glm::normalize(mid));
   std::vector<TurnStretch> stretches;
   for (const ConvexBody& body : part.bodies) turnStretches(body, pivotHeight, stretches);
   for (const TurnStretch& st : stretches) {
@@ -140,6 +141,11 @@ void addTurnRegion(const ToolPart& part, double pivotHeight, const glm::dvec3& p
     box.hi += glm::dvec3(sagitta);
     // Over the turn u moves by at most 2 sin(angle / 4) from its middle.
     const double slack = 2.0 * rho * std::sin(0.25 * angle);
+    // Near a half turn the middle axis is ill-defined: the whole box, no half-space.
+    if (angle > 2.0) {
+      region.pieces.push_back({box, false, {}, 0.0});
+      continue;
+    }
     const glm::dvec3 n = st.sign * u;
     region.pieces.push_back({box, true, n, glm::dot(n, pivot) - slack});
   }

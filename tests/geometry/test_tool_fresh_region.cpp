@@ -126,7 +126,9 @@ int missedByTurns(bool reverse, int& checked) {
     for (int trial = 0; trial < 24; ++trial) {
       const glm::dvec3 from = trial % 3 == 0 ? glm::dvec3(0, 0, 1) : testing::randomUnit(rng);
       // Small turns like a 5-axis step's, and large ones the bounds must hold too.
-      const double degrees = trial % 2 == 0 ? 0.05 + uni(rng) : 5.0 + 40.0 * uni(rng);
+      const double degrees = trial % 2 == 0   ? 0.05 + uni(rng)
+                             : trial % 4 == 1 ? 5.0 + 40.0 * uni(rng)
+                                              : 120.0 + 50.0 * uni(rng);  // whole boxes past 2 rad
       const glm::dvec3 to = tiltedBy(from, degrees, rng);
       const double h = pivotHeights[trial % 4];
       const glm::dvec3 pivot{3.0, -1.0, 2.0};
