@@ -333,7 +333,7 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
   // Where the last cut left this cutter: the fresh region skips what it removed (a
   // turn from its held pose into this step's first one included).
   std::optional<geom::FreshRegion> fresh;
-  if (cut_end_ && cut_end_part_ == &step.parts.cutter) {
+  if (options_.fresh_regions && cut_end_ && cut_end_part_ == &step.parts.cutter) {
     if (translation && cut_end_->tip == a.tip && cut_end_->axis == a.axis)
       fresh = geom::freshRegion(step.parts.cutter, a, step.b.pose);
     else

@@ -46,6 +46,10 @@ struct SimulationOptions {
   // (cut_batch.h; 1: one by one): the same report up to the map's resolution (rarely a
   // crossing placed elsewhere inside its grid edge).
   int batch_steps = 16;
+  // Each step cuts only where it reaches beyond the pose the last cut left the cutter
+  // held at (geom::freshRegion): the same stock to the bit. false: the whole box of
+  // every sweep (for tests and benchmarks; no batches then).
+  bool fresh_regions = true;
 };
 
 // Thrown out of motion() when the cancel flag is raised; the interpreter passes it on.
