@@ -1,6 +1,9 @@
 #pragma once
 // Runs a G-code program through a check::Simulation on a machine, for the tests.
+#include <cstdint>
 #include <memory>
+#include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -47,6 +50,21 @@ inline Report run(Rig setup, const std::string& program,
   interp.run(gcode::makeStringSource(program));
   return sim.finish(static_cast<std::int64_t>(interp.blocksExecuted()));
 }
+
+// A G-code program written from a seeded generator, for the randomised tests:
+// `rng` picks, uniform(lo, hi) draws a coordinate, `out` holds the text (fixed point,
+// `digits` decimals).
+struct RandomProgram {
+  explicit RandomProgram(std::uint32_t seed, int digits) : rng(seed) {
+    out.setf(std::ios::fixed);
+    out.precision(digits);
+  }
+  double uniform(double lo, double hi) {
+    return lo + (hi - lo) * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+  }
+  std::mt19937 rng;
+  std::ostringstream out;
+};
 
 inline std::vector<const Collision*> ofType(const Report& r, CollisionType type) {
   std::vector<const Collision*> out;

@@ -16,52 +16,46 @@ namespace mdhd::check {
 namespace {
 
 std::string randomProgram(std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  const auto uniform = [&](double lo, double hi) {
-    return lo + (hi - lo) * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
-  };
-  std::ostringstream p;
-  p.setf(std::ios::fixed);
-  p.precision(3);
-  p << "G21 G90 G17\nT1 M6\nG43 H1\nM3 S9000\nG0 X5 Y5 Z5\n";
+  rig::RandomProgram w(seed, 3);
+  w.out << "G21 G90 G17\nT1 M6\nG43 H1\nM3 S9000\nG0 X5 Y5 Z5\n";
   for (int block = 0; block < 12; ++block) {
-    switch (rng() % 5) {
+    switch (w.rng() % 5) {
       case 0:
       case 1: {  // a raster row of short feed steps over a wavy floor
-        const double y = uniform(4, 36), depth = uniform(0.5, 3.0);
-        const bool forward = rng() % 2 == 0;
-        p << "G1 X" << (forward ? 4.0 : 36.0) << " Y" << y << " Z1 F800\n";
+        const double y = w.uniform(4, 36), depth = w.uniform(0.5, 3.0);
+        const bool forward = w.rng() % 2 == 0;
+        w.out << "G1 X" << (forward ? 4.0 : 36.0) << " Y" << y << " Z1 F800\n";
         for (int i = 0; i <= 40; ++i) {
           const double x = forward ? 4.0 + 0.8 * i : 36.0 - 0.8 * i;
-          p << "G1 X" << x << " Z" << -depth + 0.6 * std::sin(0.4 * x + y) << "\n";
+          w.out << "G1 X" << x << " Z" << -depth + 0.6 * std::sin(0.4 * x + y) << "\n";
         }
-        p << "G0 Z5\n";
+        w.out << "G0 Z5\n";
         break;
       }
       case 2: {  // an arc at a random depth
-        const double x = uniform(10, 30), y = uniform(10, 30), r = uniform(2, 6);
-        p << "G0 X" << x + r << " Y" << y << "\nG1 Z" << -uniform(0.5, 4) << " F400\n"
-          << "G3 X" << x - r << " Y" << y << " I" << -r << " J0\nG0 Z5\n";
+        const double x = w.uniform(10, 30), y = w.uniform(10, 30), r = w.uniform(2, 6);
+        w.out << "G0 X" << x + r << " Y" << y << "\nG1 Z" << -w.uniform(0.5, 4) << " F400\n"
+              << "G3 X" << x - r << " Y" << y << " I" << -r << " J0\nG0 Z5\n";
         break;
       }
       case 3: {  // a plunge, deep enough now and then to bury the shank
-        p << "G0 X" << uniform(5, 35) << " Y" << uniform(5, 35) << "\nG1 Z" << -uniform(1, 14)
-          << " F300\nG1 X" << uniform(5, 35) << "\nG0 Z5\n";
+        w.out << "G0 X" << w.uniform(5, 35) << " Y" << w.uniform(5, 35) << "\nG1 Z"
+              << -w.uniform(1, 14) << " F300\nG1 X" << w.uniform(5, 35) << "\nG0 Z5\n";
         break;
       }
       default: {  // a rapid into the stock, or a cut with the spindle off
-        const bool rapid = rng() % 2 == 0;
-        if (!rapid) p << "M5\n";
-        p << "G0 X" << uniform(5, 35) << " Y" << uniform(5, 35) << "\n"
-          << (rapid ? "G0" : "G1 F300") << " Z" << -uniform(0.5, 2) << "\n"
-          << (rapid ? "G0" : "G1") << " X" << uniform(5, 35) << "\nG0 Z5\n";
-        if (!rapid) p << "M3 S9000\n";
+        const bool rapid = w.rng() % 2 == 0;
+        if (!rapid) w.out << "M5\n";
+        w.out << "G0 X" << w.uniform(5, 35) << " Y" << w.uniform(5, 35) << "\n"
+              << (rapid ? "G0" : "G1 F300") << " Z" << -w.uniform(0.5, 2) << "\n"
+              << (rapid ? "G0" : "G1") << " X" << w.uniform(5, 35) << "\nG0 Z5\n";
+        if (!rapid) w.out << "M3 S9000\n";
         break;
       }
     }
   }
-  p << "M30\n";
-  return p.str();
+  w.out << "M30\n";
+  return w.out.str();
 }
 
 Report runWith(const std::string& program, int batch) {

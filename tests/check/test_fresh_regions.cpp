@@ -18,68 +18,63 @@ namespace mdhd::check {
 namespace {
 
 std::string randomFiveAxisProgram(std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  const auto uniform = [&](double lo, double hi) {
-    return lo + (hi - lo) * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
-  };
-  std::ostringstream p;
-  p.setf(std::ios::fixed);
-  p.precision(4);
-  p << "G21 G90 G17\nT1 M6\nM3 S9000\nG0 A-10 C0\nG43.4 H1\nG0 X-14 Y0 Z20\n";
+  rig::RandomProgram w(seed, 4);
+  w.out << "G21 G90 G17\nT1 M6\nM3 S9000\nG0 A-10 C0\nG43.4 H1\nG0 X-14 Y0 Z20\n";
   double a = -10.0, c = 0.0;
   int tool = 1;
   for (int block = 0; block < 10; ++block) {
-    switch (rng() % 6) {
+    switch (w.rng() % 6) {
       case 0:
       case 1: {  // a turning raster: A and C move a little with every step
-        const double y = uniform(-7, 7), depth = uniform(1.0, 3.0);
-        const bool forward = rng() % 2 == 0;
-        p << "G1 X" << (forward ? -12.0 : 12.0) << " Y" << y << " Z" << 10.0 - depth << " F900\n";
+        const double y = w.uniform(-7, 7), depth = w.uniform(1.0, 3.0);
+        const bool forward = w.rng() % 2 == 0;
+        w.out << "G1 X" << (forward ? -12.0 : 12.0) << " Y" << y << " Z" << 10.0 - depth
+              << " F900\n";
         for (int i = 0; i <= 30; ++i) {
           const double x = forward ? -12.0 + 0.8 * i : 12.0 - 0.8 * i;
-          a = std::clamp(a + uniform(-0.4, 0.4), -25.0, 0.0);
-          c += uniform(-0.5, 0.5);
-          p << "G1 X" << x << " Y" << y + 0.3 * std::sin(x) << " Z"
-            << 10.0 - depth + 0.5 * std::sin(0.5 * x) << " A" << a << " C" << c << "\n";
+          a = std::clamp(a + w.uniform(-0.4, 0.4), -25.0, 0.0);
+          c += w.uniform(-0.5, 0.5);
+          w.out << "G1 X" << x << " Y" << y + 0.3 * std::sin(x) << " Z"
+                << 10.0 - depth + 0.5 * std::sin(0.5 * x) << " A" << a << " C" << c << "\n";
         }
-        p << "G0 Z20\n";
+        w.out << "G0 Z20\n";
         break;
       }
       case 2: {  // a raster with the axis held
-        const double y = uniform(-7, 7), depth = uniform(1.0, 3.0);
-        p << "G1 X-12 Y" << y << " Z" << 10.0 - depth << " F900\n";
+        const double y = w.uniform(-7, 7), depth = w.uniform(1.0, 3.0);
+        w.out << "G1 X-12 Y" << y << " Z" << 10.0 - depth << " F900\n";
         for (int i = 1; i <= 20; ++i)
-          p << "G1 X" << -12.0 + 1.2 * i << " Z" << 10.0 - depth - 0.02 * i << "\n";
-        p << "G0 Z20\n";
+          w.out << "G1 X" << -12.0 + 1.2 * i << " Z" << 10.0 - depth - 0.02 * i << "\n";
+        w.out << "G0 Z20\n";
         break;
       }
       case 3: {  // a turn in place, in the material
-        p << "G0 X" << uniform(-6, 6) << " Y" << uniform(-6, 6) << "\nG1 Z" << uniform(6, 9)
-          << " F600\n";
-        a = std::clamp(a + uniform(-6, 6), -25.0, 0.0);
-        c += uniform(-20, 20);
-        p << "G1 A" << a << " C" << c << " F1800\nG0 Z20\n";
+        w.out << "G0 X" << w.uniform(-6, 6) << " Y" << w.uniform(-6, 6) << "\nG1 Z"
+              << w.uniform(6, 9) << " F600\n";
+        a = std::clamp(a + w.uniform(-6, 6), -25.0, 0.0);
+        c += w.uniform(-20, 20);
+        w.out << "G1 A" << a << " C" << c << " F1800\nG0 Z20\n";
         break;
       }
       case 4: {  // a rapid into the stock, or a cut with the spindle off
-        const bool rapid = rng() % 2 == 0;
-        if (!rapid) p << "M5\n";
-        p << "G0 X" << uniform(-8, 8) << " Y" << uniform(-8, 8) << "\n"
-          << (rapid ? "G0" : "G1 F300") << " Z" << uniform(8, 9.5) << "\n"
-          << (rapid ? "G0" : "G1") << " X" << uniform(-8, 8) << "\nG0 Z20\n";
-        if (!rapid) p << "M3 S9000\n";
+        const bool rapid = w.rng() % 2 == 0;
+        if (!rapid) w.out << "M5\n";
+        w.out << "G0 X" << w.uniform(-8, 8) << " Y" << w.uniform(-8, 8) << "\n"
+              << (rapid ? "G0" : "G1 F300") << " Z" << w.uniform(8, 9.5) << "\n"
+              << (rapid ? "G0" : "G1") << " X" << w.uniform(-8, 8) << "\nG0 Z20\n";
+        if (!rapid) w.out << "M3 S9000\n";
         break;
       }
       default: {  // a tool change
         tool = 3 - tool;
-        p << "G49\nG0 A" << a << " C" << c << "\nT" << tool << " M6\nG43.4 H" << tool
-          << "\nG0 X-14 Y0 Z20\n";
+        w.out << "G49\nG0 A" << a << " C" << c << "\nT" << tool << " M6\nG43.4 H" << tool
+              << "\nG0 X-14 Y0 Z20\n";
         break;
       }
     }
   }
-  p << "M30\n";
-  return p.str();
+  w.out << "M30\n";
+  return w.out.str();
 }
 
 Report runWith(const std::string& program, bool fresh) {
