@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "sim/geometry/capsule_line.h"
 #include "sim/geometry/pose_interpolation.h"
 #include "sim/geometry/section_solver.h"
 
@@ -287,6 +288,17 @@ void SweptVolume::addTranslation(const ToolPart& part, const std::vector<int>& p
       SweptPiece sp{{rp.z0, rp.z1, rp.alpha, rp.beta, rp.gamma}, {}};
       sp.smoothBelow = pi > 0 && smoothJoin(cb.pieces[pi - 1], rp);
       sp.smoothAbove = pi + 1 < cb.pieces.size() && smoothJoin(rp, cb.pieces[pi + 1]);
+      if (rp.sphere && sp.smoothAbove) {
+        // The zone from the pole to the equator, the next piece a cylinder of the ball's
+        // radius reaching over its top: the body is the whole ball and the rest.
+        const RevolvedPiece& above = cb.pieces[pi + 1];
+        const double r = rp.maxRadius(), eps = 1e-12 * (1.0 + r + std::abs(rp.centre));
+        sp.capsule = std::abs(rp.z0 - (rp.centre - r)) <= eps &&
+                     std::abs(rp.z1 - rp.centre) <= eps && !above.sphere && above.r0 == above.r1 &&
+                     above.z1 >= rp.centre + r;
+        sp.centre = rp.centre;
+        sp.radius = r;
+      }
       sp.box = cylinderBox(tr.from, w, rp.z0, rp.z1, rp.maxRadius());
       grow(sp.box, cylinderBox(tr.to, w, rp.z0, rp.z1, rp.maxRadius()));
       grow(body.box, sp.box);
@@ -310,6 +322,13 @@ struct SweptVolume::LineFrame {
 bool SweptVolume::pieceExtent(const SweptBody& body, const SweptPiece& p, const LineFrame& f,
                               bool general, double& lo, double& hi) const {
   const AxisTerms& k = body.terms[f.axis];
+  if (p.capsule && !general) {
+    // The line's origin from the ball's centre at the move's start, in dot products.
+    const double c = p.centre;
+    const double me = -c * k.ze, md = f.r0rd + f.z0 * k.zd - c * k.zd;
+    const double mm = f.r0r0 + (f.z0 - c) * (f.z0 - c);
+    return capsuleExtent(me, md, mm, body.dir[f.axis], body.length, p.radius, lo, hi);
+  }
   const SectionTolerance tol{body.linearTol, body.quadricTol};
   // g = |r|^2 - alpha - beta z - gamma z^2, in (t, s)
   Quadric2 g;

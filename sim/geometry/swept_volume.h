@@ -104,6 +104,10 @@ class SweptVolume final : public LineSolid {
     PieceQuadric q;
     Aabb box;
     bool smoothBelow = false, smoothAbove = false;  // joins of the body's stack
+    // A ball's lower half under a cylinder of its radius that covers its upper half:
+    // swept, the whole ball's capsule is exact for the body (capsule_line.h).
+    bool capsule = false;
+    double centre = 0.0, radius = 0.0;  // the ball's centre height above the tip
   };
   struct SweptBody {
     Aabb box;
