@@ -160,6 +160,39 @@ double StockView::crossingOwnedBy(int owner, const GridPoint& p, int axis) const
   return x;
 }
 
+double StockView::columnSurface(int leaf, GridPoint p, double h) const {
+  const LeafInfo& first = leaves_[leaf].info;
+  const mdh::ThreeMap& m = *leaves_[leaf].map;
+  const int a = first.axis, sign = first.sign, u = m.uAxis(), v = m.vAxis();
+  const int n = m.solidCount(h);
+  if (n > 0 && n < m.levels()) return h;
+  const bool full = n > 0;
+  // Full columns of a + map and empty ones of a - map have their surface above.
+  const int dir = full == (sign > 0) ? 1 : -1;
+  int at = leaf;
+  // Bounded by the leaves stacked along the column; the guard only matters if
+  // the tiling were ever inconsistent.
+  for (int guard = 0; guard <= cubes_[a]; ++guard) {
+    const LeafInfo& l = leaves_[at].info;
+    if (dir < 0 ? l.lo[a] == 0 : l.hi[a] == cubes_[a]) return h;  // the stock's face
+    const double plane = dir < 0 ? l.lo[a] : l.hi[a];
+    p[a] = dir < 0 ? l.lo[a] - 1 : l.hi[a];
+    at = ownerOf(p, at);
+    const Leaf& next = leaves_[at];
+    bool nextFull = next.info.kind == LeafKind::kSolid;
+    if (next.info.kind == LeafKind::kPartial) {
+      if (next.info.axis != a || next.info.sign != sign) return h;  // another surface
+      const double g = next.map->height(p[u] - next.info.lo[u], p[v] - next.info.lo[v]);
+      const int k = next.map->solidCount(g);
+      if (k > 0 && k < next.map->levels()) return g;
+      nextFull = k > 0;
+    }
+    // The column changes state on the plane between the two leaves: the surface is there.
+    if (nextFull != full) return plane;
+  }
+  return h;
+}
+
 double StockView::crossingIn(int leaf, const GridPoint& p, int axis) const {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   const Leaf& l = leaves_[leaf];
@@ -180,7 +213,12 @@ double StockView::crossingIn(int leaf, const GridPoint& p, int axis) const {
   m.straddle(h0, h1, first, count);
   const int k = p[a];
   if (k < first || k >= first + count) return kNone;
-  if (!m.threeWay() || l.rowsBroken) return m.interpolatedCrossing(h0, h1, p[axis], k);
+  if (!m.threeWay() || l.rowsBroken) {
+    GridPoint c0 = p, c1 = p;
+    c1[axis] += 1;
+    return m.interpolatedCrossing(columnSurface(leaf, c0, h0), columnSurface(leaf, c1, h1), p[axis],
+                                  k);
+  }
   const int edges = m.edgesInRow(f);
   const int start = l.rowStart[f][static_cast<std::size_t>(r) * (edges + 1) + e];
   return m.row(f, r)[static_cast<std::size_t>(start + (k - first))];

@@ -86,6 +86,12 @@ class StockView {
 
   bool solidIn(int leaf, const GridPoint& p) const;
   double crossingIn(int leaf, const GridPoint& p, int axis) const;
+  // Height h of the column through grid vertex p in partial `leaf`, or, where
+  // the column is empty or full there, the height of the same column in the
+  // leaves beyond along the map's axis that hold its surface: a plain map's
+  // crossings interpolate between true heights even at a cell's top or bottom
+  // plane (an empty column alone says only that the surface is below).
+  double columnSurface(int leaf, GridPoint p, double h) const;
   static void indexRows(Leaf& leaf);
   int bucketOf(const GridPoint& p) const;
 

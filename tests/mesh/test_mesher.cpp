@@ -108,6 +108,39 @@ TEST(Mesher, PlainHeightmapStockIsClosedToo) {
   EXPECT_NEAR(enclosedVolume(m.mesh), stock.volume(), 0.01 * surfaceArea(m.mesh) * 0.1);
 }
 
+TEST(Mesher, PlainHeightmapSurfaceIsTrueAcrossBrickPlanes) {
+  // A sphere's cap cut from the top (+z maps) or the bottom (-z maps) runs through three
+  // brick planes at up to 40 degrees. A column the cell beyond its surface holds empty (or
+  // the cell before it full) carries no height; the crossings on such a plane interpolate
+  // towards the true height in the cell that holds it: within a chord's sag of the
+  // sphere, not half a grid step of slope (0.03 mm here).
+  const double r = 4.5, top = 3.2;
+  for (int sign : {1, -1}) {
+    const glm::dvec3 c(3, 3, sign > 0 ? 6.5 : top - 6.5);
+    for (int brick : {4, 0}) {
+      mdh::Stock stock({{0, 0, 0}, {6, 6, top}}, stockOptions(10, false, brick));
+      stock.cut(Ball(c, r), {0, 0, double(sign)});
+      const auto m = meshOf(stock);
+      expectWatertight(m);
+      double inside = 0.0, outside = 0.0;
+      int onPlanes = 0;
+      for (const glm::dvec3& p : m.mesh.positions()) {
+        const double d2 = (p.x - c.x) * (p.x - c.x) + (p.y - c.y) * (p.y - c.y);
+        const double depth = sign > 0 ? top - p.z : p.z;  // below the cut face
+        if (d2 > 2.8 * 2.8 || depth > 2.0) continue;      // the cap, not the faces beyond it
+        const double err = sign * (p.z - (c.z - sign * std::sqrt(r * r - d2)));
+        inside = std::max(inside, -err);  // into the removed ball
+        outside = std::max(outside, err);
+        for (double plane : {0.4, 0.8, 1.2, 2.0, 2.4, 2.8})
+          onPlanes += std::abs(p.z - plane) < 1e-9;
+      }
+      EXPECT_GT(onPlanes, 100) << sign << " " << brick;
+      EXPECT_LT(inside, 0.002) << sign << " " << brick;
+      EXPECT_LT(outside, 0.002) << sign << " " << brick;
+    }
+  }
+}
+
 TEST(Mesher, RegionMeshesOnlyTheCellsItOverlaps) {
   mdh::Stock stock({{0, 0, 0}, {8, 8, 2}}, stockOptions(8, true, 8));
   stock.cut(Ball({2, 2, 2}, 1.0), {0, 0, 1});
