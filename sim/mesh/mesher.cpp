@@ -59,6 +59,8 @@ class Mesher {
   void square(const GridPoint& cubeMin, int face);
   bool faceStates(const LeafInfo& l, int faceId);
   void mergedFace(const LeafInfo& l, int faceId);
+  void solidStrips(const LeafInfo& l, int faceId);
+  void strip(const LeafInfo& l, int faceId, int s);
   void partialLeaf(const LeafInfo& l);
   void uniformLeaf(const LeafInfo& l);
   double edgeT(const GridPoint& p, int axis, bool startSolid, bool owned = false);
@@ -108,6 +110,9 @@ class Mesher {
                     (pu - l.lo[u])];
   }
   std::vector<std::uint8_t> face_;  // exterior: the states of a boundary face
+  // exterior: per strip of a partial leaf's side face, the full squares from the base
+  std::vector<int> stripRun_;
+  std::vector<std::pair<LoopPoint, int>> sideA_, sideB_;  // strip: a chain's points, levels
 };
 
 double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid, bool owned) {
@@ -314,6 +319,85 @@ void Mesher::mergedFace(const LeafInfo& l, int faceId) {
   for (std::size_t i = 0; i < n; ++i) triangle(mid, rim_[i], rim_[(i + 1) % n], true);
 }
 
+// The side face of a partial leaf (a face along its map's axis) is solid from the
+// columns' base up to about the surface: square by square that is two triangles per
+// grid square of the stock's walls. Each strip between two neighbouring columns has
+// its run of all-solid squares from the base meshed as one rectangle instead, with
+// vertices on its sides only where something else meets them: the squares above the
+// neighbouring strip's shorter run, and every grid vertex on the leaf's own rim (the
+// neighbouring leaves' faces). stripRun_ gets each strip's run.
+void Mesher::solidStrips(const LeafInfo& l, int faceId) {
+  const CubeFace& face = cubeFaces()[faceId];
+  const int a = face.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  const int m = l.axis, w = m == u ? v : u;
+  const int fu = l.hi[u] - l.lo[u] + 1;
+  const int strips = l.hi[w] - l.lo[w], levels = l.hi[m] - l.lo[m];
+  // face_ at the strip's line `line` (0..strips) and level k above the leaf's bottom.
+  const auto solid = [&](int line, int k) {
+    const int iu = m == u ? k : line, iv = m == u ? line : k;
+    return face_[static_cast<std::size_t>(iv) * fu + iu] != 0;
+  };
+  stripRun_.assign(static_cast<std::size_t>(strips), 0);
+  for (int s = 0; s < strips; ++s) {
+    int run = 0;  // full squares from the base: both lines solid at run + 1 levels
+    for (int r = 0; r <= levels; ++r) {
+      const int k = l.sign > 0 ? r : levels - r;
+      if (!solid(s, k) || !solid(s + 1, k)) break;
+      run = r;
+    }
+    stripRun_[static_cast<std::size_t>(s)] = run;
+  }
+  for (int s = 0; s < strips; ++s)
+    if (stripRun_[static_cast<std::size_t>(s)] > 0) strip(l, faceId, s);
+}
+
+// One strip's rectangle: two chains up its sides from the base, zipped together.
+void Mesher::strip(const LeafInfo& l, int faceId, int s) {
+  const CubeFace& face = cubeFaces()[faceId];
+  const int a = face.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  const int m = l.axis, w = m == u ? v : u;
+  const int strips = l.hi[w] - l.lo[w];
+  const int run = stripRun_[static_cast<std::size_t>(s)];
+  const auto chain = [&](std::vector<std::pair<LoopPoint, int>>& out, int line, int neighbour) {
+    // The neighbouring strip's run, or 0 at the leaf's rim: every level is met there.
+    const int other =
+        neighbour < 0 || neighbour >= strips ? 0 : stripRun_[static_cast<std::size_t>(neighbour)];
+    out.clear();
+    GridPoint p{};
+    p[a] = face.side == 0 ? l.lo[a] : l.hi[a];
+    p[w] = l.lo[w] + line;
+    for (int r = 0; r <= run; ++r) {
+      if (r != 0 && r != run && r < other) continue;
+      p[m] = l.sign > 0 ? l.lo[m] + r : l.hi[m] - r;
+      LoopPoint q;
+      q.g = glm::dvec3(p[0], p[1], p[2]);
+      q.key = VertexKey{packGridVertex(p[0], p[1], p[2]), VertexKind::kCorner};
+      out.emplace_back(q, r);
+    }
+  };
+  chain(sideA_, s, s - 1);
+  chain(sideB_, s + 1, s + 1);
+  glm::dvec3 outward(0.0);
+  outward[a] = face.side == 0 ? -1.0 : 1.0;
+  const auto emitOriented = [&](const LoopPoint& p, const LoopPoint& q, const LoopPoint& r) {
+    if (glm::dot(glm::cross(q.g - p.g, r.g - p.g), outward) >= 0.0)
+      triangle(p, q, r, true);
+    else
+      triangle(p, r, q, true);
+  };
+  std::size_t i = 0, j = 0;
+  const std::size_t na = sideA_.size(), nb = sideB_.size();
+  while (i + 1 < na || j + 1 < nb) {
+    if (j + 1 == nb || (i + 1 < na && sideA_[i + 1].second <= sideB_[j + 1].second)) {
+      emitOriented(sideA_[i].first, sideA_[i + 1].first, sideB_[j].first);
+      ++i;
+    } else {
+      emitOriented(sideA_[i].first, sideB_[j].first, sideB_[j + 1].first);
+      ++j;
+    }
+  }
+}
+
 void Mesher::uniformLeaf(const LeafInfo& l) {
   const bool solid = l.kind == LeafKind::kSolid;
   const GridPoint& n = view_.cubes();
@@ -512,12 +596,23 @@ void Mesher::exterior(int leaf) {
         mergedFace(l, 2 * a + side);
         continue;
       }
+      // A side of a partial leaf: the solid squares from the columns' base up, strip by
+      // strip, as rectangles (solidStrips); the rest square by square.
+      const bool strips = l.kind == LeafKind::kPartial && a != l.axis;
+      if (strips) solidStrips(l, 2 * a + side);
+      const int m = l.axis, levels = l.hi[m] - l.lo[m];
       // Squares without a solid corner have nothing on them (a machined top face).
       const int fu = l.hi[u] - l.lo[u] + 1;
       GridPoint c{};
       c[a] = side == 0 ? 0 : n[a] - 1;
       for (c[v] = l.lo[v]; c[v] < l.hi[v]; ++c[v])
         for (c[u] = l.lo[u]; c[u] < l.hi[u]; ++c[u]) {
+          if (strips) {
+            const int w = m == u ? v : u;
+            const int run = stripRun_[static_cast<std::size_t>(c[w] - l.lo[w])];
+            const int k = c[m] - l.lo[m];  // the square's level above the leaf's bottom
+            if (l.sign > 0 ? k < run : k >= levels - run) continue;
+          }
           const std::size_t i = static_cast<std::size_t>(c[v] - l.lo[v]) * fu + (c[u] - l.lo[u]);
           if (face_[i] || face_[i + 1] || face_[i + fu] || face_[i + fu + 1])
             square(c, 2 * a + side);
@@ -537,9 +632,10 @@ bool overlaps(const LeafInfo& l, const StockView& view, const geom::Aabb& region
 
 // A leaf's meshing work, about its triangles (so runs of equal work hold about
 // equal triangles; measured on the example jobs' leaves): a partial leaf 2 per
-// column (1.2 on average, up to 3.9 on a wall) and 2 per grid square on the
-// stock's boundary box; a uniform leaf a fan round the rim of each boundary face
-// and a scan of its top faces (a lookup per vertex, far cheaper).
+// column (1.2 on average, up to 3.9 on a wall), 2 per grid square of a face across
+// its map on the stock's boundary box and about 4 per strip of a side; a uniform
+// leaf a fan round the rim of each boundary face and a scan of its top faces (a
+// lookup per vertex, far cheaper).
 std::int64_t workOf(const LeafInfo& l, const GridPoint& n) {
   const bool partial = l.kind == LeafKind::kPartial;
   std::int64_t work = 1;
@@ -547,7 +643,9 @@ std::int64_t workOf(const LeafInfo& l, const GridPoint& n) {
     const int u = (a + 1) % 3, v = (a + 2) % 3;
     const std::int64_t du = l.hi[u] - l.lo[u], dv = l.hi[v] - l.lo[v];
     const int faces = (l.lo[a] == 0 ? 1 : 0) + (l.hi[a] == n[a] ? 1 : 0);
-    work += faces * (partial ? 2 * du * dv : 2 * (du + dv));
+    // A partial leaf's sides are strips (solidStrips), its faces across the map squares.
+    const std::int64_t strips = u == l.axis ? dv : du;
+    work += faces * (partial ? (a == l.axis ? 2 * du * dv : 4 * strips) : 2 * (du + dv));
     work += partial ? (a == l.axis ? 2 * du * dv : 0) : du * dv / 16;
   }
   return work;

@@ -141,6 +141,29 @@ TEST(Mesher, PlainHeightmapSurfaceIsTrueAcrossBrickPlanes) {
   }
 }
 
+TEST(Mesher, PartialLeafSidesAreStripsUpToTheSurface) {
+  // One leaf as tall as the stock, a +z map cut by a shallow ball from the top: each
+  // side of the stock is solid from the floor to about the surface. Square by square
+  // that is two triangles per grid square (50 x 21-26 on the x = 0 side); each strip
+  // between two columns is one rectangle and its top squares instead.
+  for (int sign : {1, -1}) {
+    const glm::dvec3 c(3, 2.5, sign > 0 ? 9.0 : -6.0);
+    for (bool threeWay : {true, false}) {
+      mdh::Stock stock({{0, 0, 0}, {6, 5, 3}}, stockOptions(10, threeWay, 0));
+      stock.cut(Ball(c, 7.5), {0, 0, double(sign)});
+      const auto m = meshOf(stock);
+      expectWatertight(m);
+      EXPECT_NEAR(enclosedVolume(m.mesh), stock.volume(), 0.01 * surfaceArea(m.mesh) * 0.1);
+      int side = 0;
+      for (const auto& t : m.mesh.triangles())
+        side += m.mesh.positions()[t[0]].x == 0 && m.mesh.positions()[t[1]].x == 0 &&
+                m.mesh.positions()[t[2]].x == 0;
+      EXPECT_GT(side, 50) << sign << threeWay;
+      EXPECT_LT(side, 8 * 50) << sign << threeWay;
+    }
+  }
+}
+
 TEST(Mesher, RegionMeshesOnlyTheCellsItOverlaps) {
   mdh::Stock stock({{0, 0, 0}, {8, 8, 2}}, stockOptions(8, true, 8));
   stock.cut(Ball({2, 2, 2}, 1.0), {0, 0, 1});
