@@ -102,7 +102,8 @@ double processCpuSeconds() {
 }
 
 // One run in this process: simulation, then the mesh into the error sink.
-nlohmann::json simulate(const Case& c, double density, int threads, int batch, bool plain) {
+nlohmann::json simulate(const Case& c, double density, int threads, int batch, bool plain,
+                        int brickZ) {
   const kin::Kinematics kin(c.machine);
   const std::vector<geom::Tool> tools{ballTool()};
   check::SimulationOptions options;
@@ -110,6 +111,7 @@ nlohmann::json simulate(const Case& c, double density, int threads, int batch, b
   options.threads = threads;
   if (batch > 0) options.batch_steps = batch;
   options.three_way = !plain;
+  options.brick_z = brickZ;
   const Clock::time_point t0 = Clock::now();
   check::Simulation sim(kin, tools, c.stock, {}, options);
   gcode::InterpreterConfig config;
@@ -163,7 +165,8 @@ nlohmann::json simulate(const Case& c, double density, int threads, int batch, b
 }
 
 // The run in a child process, so that its peak memory is its own.
-nlohmann::json simulateInChild(const Case& c, double density, int threads, int batch, bool plain) {
+nlohmann::json simulateInChild(const Case& c, double density, int threads, int batch, bool plain,
+                               int brickZ) {
   int fds[2];
   if (pipe(fds) != 0) return {{"error", "pipe"}};
   const pid_t pid = fork();
@@ -171,7 +174,7 @@ nlohmann::json simulateInChild(const Case& c, double density, int threads, int b
     close(fds[0]);
     std::string text;
     try {
-      text = simulate(c, density, threads, batch, plain).dump();
+      text = simulate(c, density, threads, batch, plain, brickZ).dump();
     } catch (const std::exception& e) {
       text = nlohmann::json{{"error", e.what()}}.dump();
     }
@@ -255,6 +258,7 @@ int main(int argc, char** argv) {
   std::vector<double> densities{5, 10, 20};
   bool withFreecad = true, smoke = false, plain = false;
   int threads = 1, only = 0, passes = -1, first = 0, batch = 0;
+  int brickZ = check::SimulationOptions::kBrickZAuto;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--densities" && i + 1 < argc)
@@ -273,13 +277,15 @@ int main(int argc, char** argv) {
       first = std::atoi(argv[++i]);
     else if (a == "--batch" && i + 1 < argc)
       batch = std::atoi(argv[++i]);
+    else if (a == "--brick-z" && i + 1 < argc)
+      brickZ = std::atoi(argv[++i]);
     else if (a == "--plain")
       plain = true;
     else {
-      std::fprintf(
-          stderr,
-          "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
-          "[--threads N] [--only 3|5] [--passes K] [--first-pass J] [--batch B] [--plain]\n");
+      std::fprintf(stderr,
+                   "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
+                   "[--threads N] [--only 3|5] [--passes K] [--first-pass J] [--batch B] [--plain] "
+                   "[--brick-z Z]\n");
       return 2;
     }
   }
@@ -328,7 +334,7 @@ int main(int argc, char** argv) {
   std::vector<Run> ours, peer;
   for (const Case& c : cases)
     for (double d : densities) {
-      const nlohmann::json r = simulateInChild(c, d, threads, batch, plain);
+      const nlohmann::json r = simulateInChild(c, d, threads, batch, plain, brickZ);
       if (r.contains("error")) {
         std::printf("%-12s %4g error: %s\n", c.name.c_str(), d,
                     r["error"].get<std::string>().c_str());

@@ -46,8 +46,15 @@ class ScopeTimer {
   Clock::time_point start_;
 };
 
-mdh::StockOptions stockOptions(const SimulationOptions& o) {
+mdh::StockOptions stockOptions(const SimulationOptions& o, const kin::Machine& machine) {
   mdh::StockOptions s;
+  s.brick_z = o.brick_z;
+  if (o.brick_z == SimulationOptions::kBrickZAuto) {
+    const bool rotary =
+        std::any_of(machine.joints.begin(), machine.joints.end(),
+                    [](const kin::Joint& j) { return j.type == kin::JointType::kRotary; });
+    s.brick_z = rotary ? -1 : 0;
+  }
   s.density = o.density;
   s.three_way = o.three_way;
   s.ruleset = o.ruleset;
@@ -98,7 +105,7 @@ Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>
       if (!part->empty()) p.reach = std::max(p.reach, part->reach());
     tools_.emplace(t.number, std::move(p));
   }
-  stock_ = std::make_unique<mdh::Stock>(stock, stockOptions(options_));
+  stock_ = std::make_unique<mdh::Stock>(stock, stockOptions(options_, kin.machine()));
   contact_tolerance_ =
       options_.contact_tolerance >= 0.0 ? options_.contact_tolerance : 0.5 / options_.density;
   stats_.stock_volume_mm3 = stock_->volume();

@@ -50,6 +50,11 @@ struct SimulationOptions {
   // held at (geom::freshRegion): the same stock to the bit. false: the whole box of
   // every sweep (for tests and benchmarks; no batches then).
   bool fresh_regions = true;
+  // The stock's bricks along z (mdh::StockOptions::brick_z): kBrickZAuto takes the
+  // stock's height on a machine without rotary joints (the tool only ever cuts from
+  // above, so the maps stay +z) and cubes otherwise.
+  static constexpr int kBrickZAuto = -2;
+  int brick_z = kBrickZAuto;
 };
 
 // Thrown out of motion() when the cancel flag is raised; the interpreter passes it on.

@@ -37,6 +37,7 @@ Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(o
   if (!(options_.density > 0.0) || !std::isfinite(options_.density))
     throw std::invalid_argument("mdh: density must be a positive number of grid points per mm");
   if (options_.brick < 0) throw std::invalid_argument("mdh: brick size must be >= 0");
+  if (options_.brick_z < -1) throw std::invalid_argument("mdh: brick_z must be >= -1");
   grid_.origin = box.lo;
   grid_.h = 1.0 / options_.density;
   std::int64_t bricks = 1;
@@ -51,7 +52,8 @@ Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(o
       throw std::invalid_argument(std::string("mdh: grid too fine along ") + kAxisNames[a] + " (" +
                                   std::to_string(cubes) + " cubes)");
     grid_.cubes[a] = static_cast<int>(cubes);
-    brickSize_[a] = options_.brick > 0 ? options_.brick : grid_.cubes[a];
+    const int size = a == 2 && options_.brick_z >= 0 ? options_.brick_z : options_.brick;
+    brickSize_[a] = size > 0 ? size : grid_.cubes[a];
     bricks_[a] = (grid_.cubes[a] + brickSize_[a] - 1) / brickSize_[a];
     bricks *= bricks_[a];
   }

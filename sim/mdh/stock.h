@@ -31,8 +31,12 @@ struct StockOptions {
   bool three_way = true;
   std::vector<Rule> ruleset{Rule::kFEFS_FFS, Rule::kCTD, Rule::kSPT, Rule::kRS};
   std::uint64_t seed = 1;
-  int threads = 0;                // 0: hardware concurrency
-  int brick = 32;                 // pre-split into bricks of this many grid cubes; 0: one root cell
+  int threads = 0;  // 0: hardware concurrency
+  int brick = 32;   // pre-split into bricks of this many grid cubes; 0: one root cell
+  // The bricks' size along z when it differs: -1 brick's, 0 the stock's height. A stock
+  // only ever cut from above (a 3-axis machine) keeps +z maps: a brick as tall as the
+  // stock holds a column in one map, with fewer cells to visit per step.
+  int brick_z = -1;
   double tool_radius_hint = 0.0;  // mm, FEFS's threshold until setToolRadius
   // CutResult::removed_volume of every step. Off, a cut skips the edge integrals
   // of the volume change (a tenth of a 3-axis step) and reports 0; volume() is

@@ -58,18 +58,24 @@ std::string randomProgram(std::uint32_t seed) {
   return w.out.str();
 }
 
-Report runWith(const std::string& program, int batch) {
+Report runWith(const std::string& program, int batch, int brickZ) {
   rig::Rig s;
   s.options.density = 5;
   s.options.batch_steps = batch;
+  s.options.brick_z = brickZ;
   return rig::run(std::move(s), program);
 }
 
 class CutBatching : public ::testing::TestWithParam<std::uint32_t> {};
 
-TEST_P(CutBatching, RandomProgramsGiveTheReportOfOneByOne) {
-  const std::string program = randomProgram(GetParam());
-  const Report one = runWith(program, 1), batched = runWith(program, 16);
+// A batch is cut as one union when every cell it reaches keeps its direction. One by
+// one, a step may leave a transient overhang that a later step of the same batch
+// removes (a plunge burying the shank, then a cut above it): the slow path then splits
+// or turns cells the batch never touches, and the maps differ by their discretisation.
+// Collisions and volumes agree in every brick shape; with cubic bricks these programs
+// also meet no transient overhang, so the cells agree exactly there.
+void expectSameReport(const std::string& program, int brickZ) {
+  const Report one = runWith(program, 1, brickZ), batched = runWith(program, 16, brickZ);
   EXPECT_GT(one.stats.removed_volume_mm3, 100.0);
   ASSERT_EQ(batched.collisions.size(), one.collisions.size());
   for (std::size_t i = 0; i < one.collisions.size(); ++i) {
@@ -84,13 +90,60 @@ TEST_P(CutBatching, RandomProgramsGiveTheReportOfOneByOne) {
   for (std::size_t i = 0; i < one.stats.tools.size(); ++i) {
     EXPECT_NEAR(batched.stats.tools[i].cutting_time_s, one.stats.tools[i].cutting_time_s, 1e-9);
     EXPECT_NEAR(batched.stats.tools[i].removed_volume_mm3, one.stats.tools[i].removed_volume_mm3,
-                1e-6 * one.stats.removed_volume_mm3);
+                1e-5 * one.stats.removed_volume_mm3);
   }
   EXPECT_NEAR(batched.stats.removed_volume_mm3, one.stats.removed_volume_mm3,
-              1e-6 * one.stats.removed_volume_mm3);
-  EXPECT_EQ(batched.mdh.leaves, one.mdh.leaves);
-  EXPECT_EQ(batched.overhang.events, one.overhang.events);
+              1e-5 * one.stats.removed_volume_mm3);
   EXPECT_EQ(batched.overhang.first_line, one.overhang.first_line);
+  if (brickZ == -1) {
+    EXPECT_NEAR(batched.stats.removed_volume_mm3, one.stats.removed_volume_mm3,
+                1e-6 * one.stats.removed_volume_mm3);
+    EXPECT_EQ(batched.mdh.leaves, one.mdh.leaves);
+    EXPECT_EQ(batched.overhang.events, one.overhang.events);
+  }
+}
+
+TEST_P(CutBatching, RandomProgramsGiveTheReportOfOneByOne) {
+  const std::string program = randomProgram(GetParam());
+  for (int brickZ : {-1, 0}) {
+    SCOPED_TRACE(brickZ == -1 ? "cubic bricks" : "bricks as tall as the stock");
+    expectSameReport(program, brickZ);
+  }
+}
+
+// The bricks' shape is the engine's business: bricks as tall as the stock (a 3-axis
+// machine's default) give the report of cubic ones, up to the maps' discretisation
+// where the shank buries the flutes and cells turn or split differently.
+TEST_P(CutBatching, BricksAsTallAsTheStockGiveTheReportOfCubes) {
+  const std::string program = randomProgram(GetParam());
+  const Report cubes = runWith(program, 16, -1), tall = runWith(program, 16, 0);
+  EXPECT_LT(tall.mdh.cells, cubes.mdh.cells);
+  ASSERT_EQ(tall.collisions.size(), cubes.collisions.size());
+  for (std::size_t i = 0; i < cubes.collisions.size(); ++i) {
+    const Collision &a = tall.collisions[i], &b = cubes.collisions[i];
+    EXPECT_EQ(a.type, b.type) << i;
+    EXPECT_EQ(a.line, b.line) << i;
+    EXPECT_EQ(a.last_line, b.last_line) << i;
+    EXPECT_NEAR(a.depth, b.depth, 1e-6) << i;
+  }
+  // Seeds 1 and 2 differ by 0.03 % and 0.002 % (removed volume, density 5), where density
+  // 5 itself is 0.1 % from density 20 (either shape): the maps' discretisation.
+  EXPECT_NEAR(tall.stats.removed_volume_mm3, cubes.stats.removed_volume_mm3,
+              5e-4 * cubes.stats.removed_volume_mm3);
+  EXPECT_EQ(tall.overhang.first_line, cubes.overhang.first_line);
+}
+
+TEST(BrickShape, TallOnlyWhereNoRotaryJointTurnsTheTool) {
+  // An empty program leaves the bricks as they were laid: 40 x 40 x 20 mm at 10/mm in
+  // bricks of 32 grid cubes is 13 x 13 columns of bricks, 7 high unless tall.
+  rig::Rig three;
+  EXPECT_EQ(rig::run(std::move(three), "M30\n").mdh.leaves, 13 * 13);
+  rig::Rig five;
+  five.machine = kin::presets::acTrunnion();
+  EXPECT_EQ(rig::run(std::move(five), "M30\n").mdh.leaves, 13 * 13 * 7);
+  rig::Rig forced;
+  forced.options.brick_z = -1;
+  EXPECT_EQ(rig::run(std::move(forced), "M30\n").mdh.leaves, 13 * 13 * 7);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, CutBatching, ::testing::Values(1u, 2u, 3u, 4u, 5u, 6u));

@@ -2,6 +2,8 @@
 // membership away from the surface and volume within the discretisation error.
 #include <random>
 
+#include <utility>
+
 #include <gtest/gtest.h>
 
 #include "sim/mdh/stock.h"
@@ -24,10 +26,11 @@ struct Outcome {
   Stats stats;
 };
 
-Outcome run(std::uint64_t seed, int brick, bool threeWay, int threads = 1) {
+Outcome run(std::uint64_t seed, int brick, bool threeWay, int threads = 1, int brickZ = -1) {
   StockOptions o;
   o.density = 10;
   o.brick = brick;
+  o.brick_z = brickZ;
   o.three_way = threeWay;
   o.seed = seed;
   o.threads = threads;
@@ -61,21 +64,22 @@ class ReferenceTest : public ::testing::TestWithParam<std::uint64_t> {};
 
 TEST_P(ReferenceTest, AgreesWithTheBruteForceModel) {
   const std::uint64_t seed = GetParam();
-  for (int brick : {0, 16}) {
+  // One root cell, cubic bricks, and bricks of 16 as tall as the stock.
+  for (const auto& [brick, brickZ] : {std::pair{0, -1}, std::pair{16, -1}, std::pair{16, 0}}) {
     for (bool threeWay : {true, false}) {
-      const Outcome o = run(seed, brick, threeWay);
-      SCOPED_TRACE(::testing::Message()
-                   << "seed " << seed << " brick " << brick << " 3-way " << threeWay);
+      const Outcome o = run(seed, brick, threeWay, 1, brickZ);
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " brick " << brick << " brick_z "
+                                        << brickZ << " 3-way " << threeWay);
       EXPECT_GT(o.checked, 2000);
       EXPECT_EQ(o.mismatches, 0);
       // Discretisation error: within a tenth of a grid spacing over the machined surface.
       EXPECT_NEAR(o.volume, o.reference, 0.1 * 0.1 * o.area)
           << "splits " << o.stats.splits() << " forced " << o.stats.forcedVertices;
       std::printf(
-          "seed %llu brick %d 3way %d: vol %.4f ref %.4f area %.2f splits %lld "
+          "seed %llu brick %d/%d 3way %d: vol %.4f ref %.4f area %.2f splits %lld "
           "(d %lld i %lld s %lld f %lld) overhangs %lld resamples %lld forced %lld "
           "leaves %lld\n",
-          (unsigned long long)seed, brick, int(threeWay), o.volume, o.reference, o.area,
+          (unsigned long long)seed, brick, brickZ, int(threeWay), o.volume, o.reference, o.area,
           (long long)o.stats.splits(), (long long)o.stats.splitsDirect,
           (long long)o.stats.splitsIndirect, (long long)o.stats.splitsSignConflict,
           (long long)o.stats.splitsFallback, (long long)o.stats.overhangEvents,
