@@ -1,5 +1,5 @@
 // The stock's statistics and memory accounting (thesis 6.3).
-#include <unordered_set>
+#include <algorithm>
 
 #include "sim/mdh/stock.h"
 
@@ -7,46 +7,39 @@ namespace mdhd::mdh {
 
 namespace {
 
-std::uint64_t vertexKey(const std::array<int, 3>& p) {
-  return (std::uint64_t(p[0]) << 42) | (std::uint64_t(p[1]) << 21) | std::uint64_t(p[2]);
-}
-
 // Grid points owning at least one surface sample on one of their three
-// outgoing edges: the points a 3D pointer grid would point from.
+// outgoing edges: the points a 3D pointer grid would point from. A column's own
+// points are its parent sample's top solid vertex and the levels of the crossings on
+// the two edges leaving it (each a run of levels): counted as the union of the two
+// runs and the point, with no set.
 std::int64_t sampleOwners(const ThreeMap& m, std::int64_t& parents, std::int64_t& embedded) {
-  std::unordered_set<std::uint64_t> owners;
   const GridBox& box = m.box();
-  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
-  for (int iv = 0; iv < m.columnsV(); ++iv)
-    for (int iu = 0; iu < m.columnsU(); ++iu) {
+  const int a = m.axis(), nu = m.columnsU(), nv = m.columnsV();
+  std::int64_t owners = 0;
+  for (int iv = 0; iv < nv; ++iv)
+    for (int iu = 0; iu < nu; ++iu) {
       const double h = m.height(iu, iv);
       const int n = m.solidCount(h);
-      if (n == 0 || n == m.levels()) continue;
-      ++parents;
-      std::array<int, 3> p{};
-      p[a] = m.direction().sign > 0 ? box.lo[a] + n - 1 : box.hi[a] - n;
-      p[u] = box.lo[u] + iu;
-      p[v] = box.lo[v] + iv;
-      owners.insert(vertexKey(p));
-    }
-  if (!m.threeWay()) return static_cast<std::int64_t>(owners.size());
-  for (int family = 0; family < 2; ++family) {
-    const int x = family == 0 ? u : v, y = family == 0 ? v : u;
-    for (int r = 0; r < m.rowCount(family); ++r)
-      for (int e = 0; e < m.edgesInRow(family); ++e) {
-        int first = 0, count = 0;
-        m.straddle(m.rowHeight(family, r, e), m.rowHeight(family, r, e + 1), first, count);
-        embedded += count;
-        for (int i = 0; i < count; ++i) {
-          std::array<int, 3> p{};
-          p[a] = first + i;
-          p[x] = box.lo[x] + e;
-          p[y] = box.lo[y] + r;
-          owners.insert(vertexKey(p));
-        }
+      const bool partial = n != 0 && n != m.levels();
+      parents += partial;
+      int first[2] = {0, 0}, count[2] = {0, 0};
+      if (m.threeWay()) {
+        if (iu + 1 < nu) m.straddle(h, m.height(iu + 1, iv), first[0], count[0]);
+        if (iv + 1 < nv) m.straddle(h, m.height(iu, iv + 1), first[1], count[1]);
+        embedded += count[0] + count[1];
       }
-  }
-  return static_cast<std::int64_t>(owners.size());
+      const int overlap = std::max(
+          0, std::min(first[0] + count[0], first[1] + count[1]) - std::max(first[0], first[1]));
+      owners += count[0] + count[1] - overlap;
+      if (!partial) continue;
+      const int top = m.direction().sign > 0 ? box.lo[a] + n - 1 : box.hi[a] - n;
+      const auto in = [&](int k) {
+        return (k >= first[0] && k < first[0] + count[0]) ||
+               (k >= first[1] && k < first[1] + count[1]);
+      };
+      owners += !in(top);
+    }
+  return owners;
 }
 
 std::int64_t countNodes(const Cell& c, std::size_t& bytes) {
