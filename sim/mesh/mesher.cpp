@@ -56,6 +56,7 @@ class Mesher {
   // hint_ owns all eight corners, so its crossings need no owner lookup.
   void surfaceCube(const GridPoint& c, unsigned solid, bool owned);
   void foreignColumn(const LeafInfo& l, GridPoint c);
+  void walkColumn(const LeafInfo& l, int pu, int pv, std::uint8_t* out);
   void square(const GridPoint& cubeMin, int face);
   bool faceStates(const LeafInfo& l, int faceId);
   void mergedFace(const LeafInfo& l, int faceId);
@@ -452,6 +453,40 @@ void Mesher::uniformLeaf(const LeafInfo& l) {
 // the leaf's own from its column count (and topFace_ at a foreign top), the others
 // walked from owner to owner and kept for the next far-side column, which shares two
 // corner columns with this one. Only the cubes whose corners disagree are meshed.
+// The solidity of the column through (pu, pv) over leaf l's levels, as the vertices'
+// owners store it: a run of levels at a time per owner (a uniform leaf, or a map of
+// l's direction, answers for all its levels at once), vertex by vertex otherwise.
+void Mesher::walkColumn(const LeafInfo& l, int pu, int pv, std::uint8_t* out) {
+  const int a = l.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  const GridPoint& n = view_.cubes();
+  GridPoint p{};
+  p[u] = pu;
+  p[v] = pv;
+  int owner = hint_;
+  for (int k = l.lo[a]; k <= l.hi[a];) {
+    p[a] = k;
+    owner = view_.ownerOf(p, owner);
+    const LeafInfo& o = view_.leaf(owner);
+    const int end = std::min(l.hi[a], o.hi[a] == n[a] ? n[a] : o.hi[a] - 1);  // owned levels
+    std::uint8_t* at = out + (k - l.lo[a]);
+    const int count = end - k + 1;
+    if (o.kind != LeafKind::kPartial) {
+      std::fill(at, at + count, o.kind == LeafKind::kSolid ? 1 : 0);
+    } else if (o.axis == a && o.sign == l.sign) {
+      // Solid below (+) or above (-) the owner's column surface.
+      const int solid = view_.columnSolidCount(owner, p[u], p[v]);
+      const int edge = o.sign > 0 ? o.lo[a] + solid : o.hi[a] - solid + 1;
+      for (int i = 0; i < count; ++i) at[i] = o.sign > 0 ? k + i < edge : k + i >= edge;
+    } else {
+      for (int i = 0; i < count; ++i) {
+        p[a] = k + i;
+        at[i] = view_.solidOwnedBy(owner, p);
+      }
+    }
+    k = end + 1;
+  }
+}
+
 void Mesher::foreignColumn(const LeafInfo& l, GridPoint c) {
   const int a = l.axis, u = (a + 1) % 3, v = (a + 2) % 3;
   const GridPoint& n = view_.cubes();
@@ -487,19 +522,28 @@ void Mesher::foreignColumn(const LeafInfo& l, GridPoint c) {
       hit->pu = pu;
       hit->pv = pv;
       hit->states.resize(static_cast<std::size_t>(levels));
-      GridPoint p{};
-      p[u] = pu;
-      p[v] = pv;
-      int owner = hint_;
-      for (int k = 0; k < levels; ++k) {
-        p[a] = l.lo[a] + k;
-        hit->states[k] = view_.solidWalk(p, owner);
-      }
+      walkColumn(l, pu, pv, hit->states.data());
     }
     col[d] = hit->states.data();
   }
+  // Below the first level where any column leaves its base state (solid for a + map)
+  // and above the last, all four agree: only the cubes between can hold surface.
+  const std::uint8_t base = l.sign > 0 ? 1 : 0;
+  int first = levels, last = -1;
+  for (int d = 0; d < 4; ++d) {
+    const std::uint8_t* s = col[d];
+    std::uint8_t prev = base;
+    for (int j = 0; j < levels; ++j) {
+      if ((s[j] != 0) != (prev != 0)) {
+        first = std::min(first, j);
+        last = std::max(last, j);
+      }
+      prev = s[j];
+    }
+    if ((prev != 0) == (base != 0)) last = std::max(last, levels);  // the far side differs
+  }
   const ColumnCorners corners(a, u, v);
-  for (int j = 0; j + 1 < levels; ++j) {
+  for (int j = std::max(0, first - 1); j + 1 < levels && j <= last - 1; ++j) {
     unsigned solid = 0;
     for (int d = 0; d < 4; ++d) solid |= corners.bits(d, col[d][j] != 0, col[d][j + 1] != 0);
     if (solid == 0 || solid == 0xffu) continue;
