@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -476,7 +477,10 @@ void Mesher::walkColumn(const LeafInfo& l, int pu, int pv, std::uint8_t* out) {
       // Solid below (+) or above (-) the owner's column surface.
       const int solid = view_.columnSolidCount(owner, p[u], p[v]);
       const int edge = o.sign > 0 ? o.lo[a] + solid : o.hi[a] - solid + 1;
-      for (int i = 0; i < count; ++i) at[i] = o.sign > 0 ? k + i < edge : k + i >= edge;
+      // Levels below `edge` are solid in a + map, those from it on in a - map.
+      const int below = std::clamp(edge - k, 0, count);
+      std::fill(at, at + below, o.sign > 0 ? 1 : 0);
+      std::fill(at + below, at + count, o.sign > 0 ? 0 : 1);
     } else {
       for (int i = 0; i < count; ++i) {
         p[a] = k + i;
@@ -501,7 +505,9 @@ void Mesher::foreignColumn(const LeafInfo& l, GridPoint c) {
       ownColumn_[d].resize(static_cast<std::size_t>(levels));
       std::uint8_t* out = ownColumn_[d].data();
       const int k = view_.columnSolidCount(hint_, pu, pv);
-      for (int j = 0; j < levels; ++j) out[j] = l.sign > 0 ? j < k : j >= levels - k;
+      const int below = l.sign > 0 ? k : levels - k;  // levels before the column's change
+      std::fill(out, out + below, l.sign > 0 ? 1 : 0);
+      std::fill(out + below, out + levels, l.sign > 0 ? 0 : 1);
       if (topForeign) out[levels - 1] = topFaceAt(l, pu, pv);
       col[d] = out;
       continue;
@@ -531,16 +537,18 @@ void Mesher::foreignColumn(const LeafInfo& l, GridPoint c) {
   const std::uint8_t base = l.sign > 0 ? 1 : 0;
   int first = levels, last = -1;
   for (int d = 0; d < 4; ++d) {
-    const std::uint8_t* s = col[d];
-    std::uint8_t prev = base;
-    for (int j = 0; j < levels; ++j) {
-      if ((s[j] != 0) != (prev != 0)) {
-        first = std::min(first, j);
-        last = std::max(last, j);
-      }
-      prev = s[j];
+    // States are 0 or 1. The first change is the first level off the base state; the
+    // last is the one after the last level in the base state, or the far side (which
+    // differs from the base) when the column ends in it.
+    const auto* s = col[d];
+    const auto* off = static_cast<const std::uint8_t*>(std::memchr(s, base ^ 1, levels));
+    first = std::min(first, off != nullptr ? static_cast<int>(off - s) : levels);
+    if (s[levels - 1] == base) {
+      last = levels;
+    } else {
+      const auto* on = static_cast<const std::uint8_t*>(memrchr(s, base, levels));
+      last = std::max(last, on != nullptr ? static_cast<int>(on - s) + 1 : 0);
     }
-    if ((prev != 0) == (base != 0)) last = std::max(last, levels);  // the far side differs
   }
   const ColumnCorners corners(a, u, v);
   for (int j = std::max(0, first - 1); j + 1 < levels && j <= last - 1; ++j) {
