@@ -9,16 +9,17 @@ namespace mdhd::mesh {
 
 namespace {
 
-// Shape quality of a triangle facing along `normal`: twice its area over the
-// sum of its squared sides (largest for an equilateral), negative if it faces
-// away or is degenerate.
+// Shape quality of a triangle facing along `normal`: the square of twice its area
+// over the sum of its squared sides (largest for an equilateral; squared, so no
+// root: only its order matters), negative if it faces away or is degenerate.
 double quality(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                const glm::dvec3& normal) {
   const glm::dvec3 n = glm::cross(b - a, c - a);
-  const double len = glm::length(n);
-  if (len <= kMinDoubleArea || glm::dot(n, normal) <= 0.0) return -1.0;
+  const double len2 = glm::dot(n, n);
+  if (len2 <= kMinDoubleArea * kMinDoubleArea || glm::dot(n, normal) <= 0.0) return -1.0;
   const glm::dvec3 ab = b - a, bc = c - b, ca = a - c;
-  return len / (glm::dot(ab, ab) + glm::dot(bc, bc) + glm::dot(ca, ca));
+  const double sides = glm::dot(ab, ab) + glm::dot(bc, bc) + glm::dot(ca, ca);
+  return len2 / (sides * sides);
 }
 
 }  // namespace

@@ -165,7 +165,7 @@ double StockView::columnSurface(int leaf, GridPoint p, double h) const {
   const mdh::ThreeMap& m = *leaves_[leaf].map;
   const int a = first.axis, sign = first.sign, u = m.uAxis(), v = m.vAxis();
   const int n = m.solidCount(h);
-  if (n > 0 && n < m.levels()) return h;
+  if (n > 0 && n < m.levels()) return h;  // callers mostly test this first
   const bool full = n > 0;
   // Full columns of a + map and empty ones of a - map have their surface above.
   const int dir = full == (sign > 0) ? 1 : -1;
@@ -214,10 +214,15 @@ double StockView::crossingIn(int leaf, const GridPoint& p, int axis) const {
   const int k = p[a];
   if (k < first || k >= first + count) return kNone;
   if (!m.threeWay() || l.rowsBroken) {
-    GridPoint c0 = p, c1 = p;
+    // Most columns hold their surface in this leaf: the walk only for those that do not.
+    const auto inside = [&](double h) {
+      const int n = m.solidCount(h);
+      return n != 0 && n != m.levels();
+    };
+    GridPoint c1 = p;
     c1[axis] += 1;
-    return m.interpolatedCrossing(columnSurface(leaf, c0, h0), columnSurface(leaf, c1, h1), p[axis],
-                                  k);
+    return m.interpolatedCrossing(inside(h0) ? h0 : columnSurface(leaf, p, h0),
+                                  inside(h1) ? h1 : columnSurface(leaf, c1, h1), p[axis], k);
   }
   const int edges = m.edgesInRow(f);
   const int start = l.rowStart[f][static_cast<std::size_t>(r) * (edges + 1) + e];
