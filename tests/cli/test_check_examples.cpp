@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -129,6 +130,54 @@ TEST(CheckExamples, DonutGrooveOverhangsClean) {
   EXPECT_GT(r.report["overhang"]["cells_not_plus_z"].get<int>(), 0);
   EXPECT_GT(r.report["overhang"]["area_mm2"].get<double>(), 0.0);
   EXPECT_GT(r.report["stats"]["removed_volume_mm3"].get<double>(), 0.0);
+}
+
+// An example job with its options changed, written beside the test's temp files
+// (its machine and program by absolute path).
+std::string exampleWith(const char* name, const json& options) {
+  std::ifstream in(example(name));
+  json job = json::parse(in);
+  const fs::path dir = fs::path(example(name)).parent_path();
+  job["machine_file"] = (dir / job["machine_file"].get<std::string>()).string();
+  job["program_file"] = (dir / job["program_file"].get<std::string>()).string();
+  job["options"].update(options);
+  const std::string tag = std::to_string(std::hash<std::string>{}(options.dump()));
+  const fs::path path = fs::path(::testing::TempDir()) / ("mdhd_" + tag + "_" + name);
+  std::ofstream(path) << job.dump();
+  return path.string();
+}
+
+// Plain heightmaps (options.three_way false) place a surface that lies along a cell's
+// direction only within a grid edge: the vertical walls of the contour are off by up to
+// half a spacing on average, and where the crash's overhangs turn cells sideways the
+// hole's floor is, by up to one spacing. So the real mistakes are all found, and
+// anything else is shallower than a spacing: a contact tolerance of one spacing (the
+// plain map's resolution) leaves exactly the three.
+TEST(CheckExamples, PlainMapsHoldTheExamplesWithinOneSpacing) {
+  const double h = 0.2;  // both jobs at density 5
+  const CheckRun contour = check(exampleWith("contour-3axis.json", {{"three_way", false}}));
+  EXPECT_EQ(contour.report["status"], "clean");
+  // The ring's two walls, 2 mm tall: about 2 x (2 x (50 + 30) - 8 x 5 + 2 pi 5) mm long.
+  const double walls = 2.0 * 2 * (2 * (50 + 30) - 8 * 5 + 2 * kPi * 5);
+  EXPECT_NEAR(contour.report["stats"]["removed_volume_mm3"].get<double>(), 1817.0, walls * h / 2);
+  const std::set<std::pair<std::string, int>> want{
+      {"rapid_into_stock", 7}, {"holder_contact", 11}, {"shank_contact", 12}};
+  const CheckRun crash = check(exampleWith("crash-3axis.json", {{"three_way", false}}));
+  std::set<std::pair<std::string, int>> got;
+  for (const json& e : crash.report["collisions"]) {
+    const std::pair<std::string, int> at{e["type"].get<std::string>(), e["line"].get<int>()};
+    got.insert(at);
+    if (!want.contains(at)) {
+      EXPECT_LT(e["depth"].get<double>(), h) << e.dump();
+    }
+  }
+  for (const auto& w : want) EXPECT_TRUE(got.contains(w)) << w.first << " " << w.second;
+  const CheckRun tolerant =
+      check(exampleWith("crash-3axis.json", {{"three_way", false}, {"contact_tolerance", h}}));
+  got.clear();
+  for (const json& e : tolerant.report["collisions"])
+    got.insert({e["type"].get<std::string>(), e["line"].get<int>()});
+  EXPECT_EQ(got, want) << tolerant.report["collisions"].dump(2);
 }
 
 // The stock is cut on several threads with bit-identical results: the report is
