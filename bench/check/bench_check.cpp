@@ -125,7 +125,7 @@ double processCpuSeconds() {
 
 // One run in this process: simulation, then the mesh into the error sink.
 nlohmann::json simulate(const Case& c, double density, int threads, int batch, bool plain,
-                        int brickZ) {
+                        int brickZ, double chainTolerance) {
   const kin::Kinematics kin(c.machine);
   const std::vector<geom::Tool> tools{ballTool()};
   check::SimulationOptions options;
@@ -134,6 +134,7 @@ nlohmann::json simulate(const Case& c, double density, int threads, int batch, b
   if (batch > 0) options.batch_steps = batch;
   options.three_way = !plain;
   options.brick_z = brickZ;
+  options.chain_tolerance = chainTolerance;
   const Clock::time_point t0 = Clock::now();
   check::Simulation sim(kin, tools, c.stock, {}, options);
   gcode::InterpreterConfig config;
@@ -196,7 +197,7 @@ nlohmann::json simulate(const Case& c, double density, int threads, int batch, b
 
 // The run in a child process, so that its peak memory is its own.
 nlohmann::json simulateInChild(const Case& c, double density, int threads, int batch, bool plain,
-                               int brickZ) {
+                               int brickZ, double chainTolerance) {
   int fds[2];
   if (pipe(fds) != 0) return {{"error", "pipe"}};
   const pid_t pid = fork();
@@ -204,7 +205,7 @@ nlohmann::json simulateInChild(const Case& c, double density, int threads, int b
     close(fds[0]);
     std::string text;
     try {
-      text = simulate(c, density, threads, batch, plain, brickZ).dump();
+      text = simulate(c, density, threads, batch, plain, brickZ, chainTolerance).dump();
     } catch (const std::exception& e) {
       text = nlohmann::json{{"error", e.what()}}.dump();
     }
@@ -289,6 +290,7 @@ int main(int argc, char** argv) {
   bool withFreecad = true, smoke = false, plain = false;
   int threads = 1, only = 0, passes = -1, first = 0, batch = 0;
   int brickZ = check::SimulationOptions::kBrickZAuto;
+  double chainTolerance = -1.0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--densities" && i + 1 < argc)
@@ -307,6 +309,8 @@ int main(int argc, char** argv) {
       first = std::atoi(argv[++i]);
     else if (a == "--batch" && i + 1 < argc)
       batch = std::atoi(argv[++i]);
+    else if (a == "--chain-tolerance" && i + 1 < argc)
+      chainTolerance = std::atof(argv[++i]);
     else if (a == "--brick-z" && i + 1 < argc)
       brickZ = std::atoi(argv[++i]);
     else if (a == "--plain")
@@ -315,7 +319,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
                    "[--threads N] [--only 3|5] [--passes K] [--first-pass J] [--batch B] [--plain] "
-                   "[--brick-z Z]\n");
+                   "[--brick-z Z] [--chain-tolerance T]\n");
       return 2;
     }
   }
@@ -364,7 +368,7 @@ int main(int argc, char** argv) {
   std::vector<Run> ours, peer;
   for (const Case& c : cases)
     for (double d : densities) {
-      const nlohmann::json r = simulateInChild(c, d, threads, batch, plain, brickZ);
+      const nlohmann::json r = simulateInChild(c, d, threads, batch, plain, brickZ, chainTolerance);
       if (r.contains("error")) {
         std::printf("%-12s %4g error: %s\n", c.name.c_str(), d,
                     r["error"].get<std::string>().c_str());

@@ -2,13 +2,40 @@
 
 #include <algorithm>
 
+#include "sim/geometry/polyline_simplify.h"
+
 namespace mdhd::check {
 
-CutBatch::CutBatch(int max_steps) : max_(std::max(1, max_steps)), cap_(max_) {}
+CutBatch::CutBatch(int max_steps, double chain_tolerance)
+    : max_(std::max(1, max_steps)), cap_(max_), chainTolerance_(std::max(0.0, chain_tolerance)) {}
+
+namespace {
+
+// The chain's poses less those Douglas-Peucker drops within `tolerance`: a pose
+// between two straight steps may go, the first, the last and any other stay.
+std::vector<geom::ToolPose> simplifiedChain(const std::vector<geom::ToolPose>& poses,
+                                            const std::vector<std::uint8_t>& straight,
+                                            double tolerance) {
+  if (!(tolerance > 0.0) || poses.size() <= 2) return poses;
+  std::vector<glm::dvec3> tips;
+  std::vector<std::uint8_t> fixed(poses.size(), 1);
+  tips.reserve(poses.size());
+  for (const geom::ToolPose& p : poses) tips.push_back(p.tip);
+  for (std::size_t k = 1; k + 1 < poses.size(); ++k)
+    fixed[k] = !(straight[k - 1] != 0 && straight[k] != 0);
+  std::vector<std::size_t> kept;
+  geom::simplifyPolyline(tips, fixed, tolerance, kept);
+  std::vector<geom::ToolPose> out;
+  out.reserve(kept.size());
+  for (std::size_t k : kept) out.push_back(poses[k]);
+  return out;
+}
+
+}  // namespace
 
 bool CutBatch::add(const mdh::Stock& stock, const geom::ToolPart& part, const geom::ToolPose& a,
                    const geom::ToolPose& b, geom::SweptVolume sweep, geom::FreshRegion fresh,
-                   const glm::dvec3& direction, int line, bool ask) {
+                   const glm::dvec3& direction, int line, bool straight, bool ask) {
   bool removes = false;
   if (ask) {
     std::vector<const geom::LineSolid*> pending;
@@ -28,6 +55,7 @@ bool CutBatch::add(const mdh::Stock& stock, const geom::ToolPart& part, const ge
   sweeps_.push_back(std::move(sweep));
   fresh_.push_back(std::move(fresh));
   lines_.push_back(line);
+  straight_.push_back(straight ? 1 : 0);
   return removes;
 }
 
@@ -43,7 +71,8 @@ void CutBatch::flush(mdh::Stock& stock,
     geom::FreshRegion region;
     for (const geom::FreshRegion& f : fresh_)
       region.pieces.insert(region.pieces.end(), f.pieces.begin(), f.pieces.end());
-    const geom::SweptVolume chain = geom::SweptVolume::chainOfTranslations(*part_, poses_);
+    const geom::SweptVolume chain = geom::SweptVolume::chainOfTranslations(
+        *part_, simplifiedChain(poses_, straight_, chainTolerance_));
     if (const auto r = stock.cutIfFast(chain, direction_, &region, steps)) {
       cut(lines_[0], *r);
       ++stats_.batches;
@@ -65,6 +94,7 @@ void CutBatch::flush(mdh::Stock& stock,
   sweeps_.clear();
   fresh_.clear();
   lines_.clear();
+  straight_.clear();
 }
 
 }  // namespace mdhd::check

@@ -8,6 +8,14 @@
 // choice depends on the order of the steps) is cut again step by step, and the batch
 // size backs off for a while.
 //
+// With a chain tolerance t > 0, the batch's union is cut along the chain less the
+// points between two straight feed steps that Douglas-Peucker can drop within t
+// (geom::simplifyPolyline): the swept volume then stays within t of the steps' (the
+// same shape translated along paths within t of each other), and a raster of short
+// moves along a smooth surface is cut with a few long translations instead of many
+// short ones. Arc steps (already chords within the job's tolerance), rapids and
+// turns keep every point.
+//
 // Until a batch is flushed the stock still holds what it will remove: a probe of
 // it then overstates contacts, never misses one (flush, then probe again).
 #include <cstdint>
@@ -32,8 +40,9 @@ struct CutBatchStats {
 
 class CutBatch {
  public:
-  // At most `max_steps` steps per cut (1: every step cut on its own).
-  explicit CutBatch(int max_steps);
+  // At most `max_steps` steps per cut (1: every step cut on its own); chain points
+  // dropped within `chain_tolerance` mm (0: none).
+  explicit CutBatch(int max_steps, double chain_tolerance = 0.0);
 
   bool empty() const { return lines_.empty(); }
 
@@ -42,11 +51,13 @@ class CutBatch {
   // returns whether it removes material: whether `sweep` reaches into the stock less
   // the pending sweeps along some z grid line (Stock::removesMaterial), what the step
   // cut on its own would find; without, false (its motion is known to cut already).
+  // `straight`: a step of a straight feed move (its ends may be dropped from the
+  // chain where the neighbouring step is one too).
   // The caller flushes first unless the step continues the pending chain (same part,
   // starting at its last pose).
   bool add(const mdh::Stock& stock, const geom::ToolPart& part, const geom::ToolPose& a,
            const geom::ToolPose& b, geom::SweptVolume sweep, geom::FreshRegion fresh,
-           const glm::dvec3& direction, int line, bool ask = true);
+           const glm::dvec3& direction, int line, bool straight, bool ask = true);
   bool full() const { return static_cast<int>(lines_.size()) >= cap_; }
 
   // Cuts the pending steps; `cut(line, result)` hears of every cut made: one for a
@@ -59,12 +70,14 @@ class CutBatch {
  private:
   int max_ = 1;
   int cap_ = 1;  // the current limit: max_, lowered after a refusal
+  double chainTolerance_ = 0.0;
   const geom::ToolPart* part_ = nullptr;
   glm::dvec3 direction_{0.0, 0.0, 1.0};
   std::vector<geom::ToolPose> poses_;  // the chain: start, then each step's end
   std::vector<geom::SweptVolume> sweeps_;
   std::vector<geom::FreshRegion> fresh_;
   std::vector<int> lines_;
+  std::vector<std::uint8_t> straight_;
   glm::dvec3 lastHit_{0.0};  // where the last step asked removed, from its end tip
   CutBatchStats stats_;
 };

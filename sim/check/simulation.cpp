@@ -95,7 +95,8 @@ Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>
       fixtures_(std::make_shared<const std::vector<std::unique_ptr<geom::LineSolid>>>(
           std::move(fixtures))),
       options_(std::move(options)),
-      batch_(options_.batch_steps),
+      batch_(options_.batch_steps,
+             options_.chain_tolerance < 0.0 ? 0.5 * options_.tolerance : options_.chain_tolerance),
       started_(Clock::now()) {
   for (const geom::Tool& t : tools) {
     ToolParts p{t, geom::makeToolPart(t, geom::ToolPartKind::kCutter),
@@ -391,7 +392,7 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
       // not at all once an earlier step of the motion has.
       ScopeTimer timer(timing_.cut_ms);
       if (batch_.add(*stock_, step.parts.cutter, a, step.b.pose, step.cutter, std::move(*fresh),
-                     dir, m.pos.line, !removed))
+                     dir, m.pos.line, m.type == gcode::MotionType::kFeed, !removed))
         removed = true;
     }
     if (batch_.full()) flushCuts();

@@ -46,6 +46,10 @@ struct SimulationOptions {
   // (cut_batch.h; 1: one by one): the same report up to the map's resolution (rarely a
   // crossing placed elsewhere inside its grid edge).
   int batch_steps = 16;
+  // A batch's chain drops the points between straight feed steps that stay within this
+  // many mm of the chain that replaces them (check/cut_batch.h): < 0 half of
+  // `tolerance`, 0 none (every batch the stock the steps one by one would leave).
+  double chain_tolerance = -1.0;
   // Each step cuts only where it reaches beyond the pose the last cut left the cutter
   // held at (geom::freshRegion): the same stock to the bit. false: the whole box of
   // every sweep (for tests and benchmarks; no batches then).

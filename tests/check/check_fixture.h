@@ -1,6 +1,7 @@
 #pragma once
 // Runs a G-code program through a check::Simulation on a machine, for the tests.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -34,8 +35,9 @@ inline geom::Tool flatTool(int number = 1) {
   return t;
 }
 
-inline Report run(Rig setup, const std::string& program,
-                  const std::atomic<bool>* cancel = nullptr) {
+// `inspect`, when given, sees the simulation after the report is made.
+inline Report run(Rig setup, const std::string& program, const std::atomic<bool>* cancel = nullptr,
+                  const std::function<void(const Simulation&)>& inspect = {}) {
   const kin::Kinematics kin(setup.machine);
   if (setup.tools.empty()) setup.tools.push_back(flatTool());
   Simulation sim(kin, setup.tools, setup.stock, std::move(setup.fixtures), setup.options);
@@ -48,7 +50,9 @@ inline Report run(Rig setup, const std::string& program,
   for (const geom::Tool& t : setup.tools) config.tools.add({t.number, t.length, t.diameter});
   gcode::Interpreter interp(config, sim);
   interp.run(gcode::makeStringSource(program));
-  return sim.finish(static_cast<std::int64_t>(interp.blocksExecuted()));
+  Report report = sim.finish(static_cast<std::int64_t>(interp.blocksExecuted()));
+  if (inspect) inspect(sim);
+  return report;
 }
 
 // A G-code program written from a seeded generator, for the randomised tests:

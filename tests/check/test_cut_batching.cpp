@@ -58,11 +58,16 @@ std::string randomProgram(std::uint32_t seed) {
   return w.out.str();
 }
 
-Report runWith(const std::string& program, int batch, int brickZ) {
+Report runWith(const std::string& program, int batch, int brickZ, double chainTolerance = 0.0,
+               double* machinedArea = nullptr) {
   rig::Rig s;
   s.options.density = 5;
   s.options.batch_steps = batch;
   s.options.brick_z = brickZ;
+  s.options.chain_tolerance = chainTolerance;
+  if (machinedArea != nullptr)
+    return rig::run(std::move(s), program, nullptr,
+                    [&](const Simulation& sim) { *machinedArea = sim.stock().area().total; });
   return rig::run(std::move(s), program);
 }
 
@@ -131,6 +136,29 @@ TEST_P(CutBatching, BricksAsTallAsTheStockGiveTheReportOfCubes) {
   EXPECT_NEAR(tall.stats.removed_volume_mm3, cubes.stats.removed_volume_mm3,
               5e-4 * cubes.stats.removed_volume_mm3);
   EXPECT_EQ(tall.overhang.first_line, cubes.overhang.first_line);
+}
+
+// A batch's chain less the points Douglas-Peucker drops within half the job's
+// tolerance (the default): the swept volumes stay within that distance of the
+// steps', so the removed volume differs by at most that much times the machined
+// surface; the collisions are found on the steps themselves (the same ones, at the
+// same lines), their depths into a stock whose surface moved by at most that much.
+TEST_P(CutBatching, ChainsWithinHalfTheToleranceStayWithinItOfTheSteps) {
+  const std::string program = randomProgram(GetParam());
+  const double tolerance = SimulationOptions{}.tolerance / 2;
+  double area = 0.0;
+  const Report exact = runWith(program, 16, -1, 0.0, &area);
+  const Report chained = runWith(program, 16, -1, -1.0);
+  ASSERT_EQ(chained.collisions.size(), exact.collisions.size());
+  for (std::size_t i = 0; i < exact.collisions.size(); ++i) {
+    EXPECT_EQ(chained.collisions[i].type, exact.collisions[i].type) << i;
+    EXPECT_EQ(chained.collisions[i].line, exact.collisions[i].line) << i;
+    // Depths are measured into the stock, whose surface the chains moved by <= tolerance.
+    EXPECT_NEAR(chained.collisions[i].depth, exact.collisions[i].depth, tolerance) << i;
+  }
+  EXPECT_GT(area, 100.0);
+  EXPECT_NEAR(chained.stats.removed_volume_mm3, exact.stats.removed_volume_mm3, tolerance * area);
+  EXPECT_EQ(chained.stats.moves.total(), exact.stats.moves.total());
 }
 
 TEST(BrickShape, TallOnlyWhereNoRotaryJointTurnsTheTool) {

@@ -1,0 +1,25 @@
+#pragma once
+// Douglas-Peucker on a chain of tool tips: which points a chain of translations can
+// do without while every point dropped stays within `tolerance` of the segment that
+// replaces it. A segment of the chain has both its ends within `tolerance` of that
+// segment, so it lies within `tolerance` of it (the distance to a segment is convex),
+// and the segment within `tolerance` of the chain (the chain's projection onto it
+// covers it): the two paths are within `tolerance` of each other both ways, and so are
+// the swept volumes of one tool shape translated along them.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace mdhd::geom {
+
+// Indices of the points kept, ascending: the first and the last, every point marked
+// in `fixed` (same size as `points`, or empty for none), and every point Douglas-
+// Peucker needs to keep the others within `tolerance` (>= 0; 0 drops only points on
+// the segment exactly).
+void simplifyPolyline(std::span<const glm::dvec3> points, std::span<const std::uint8_t> fixed,
+                      double tolerance, std::vector<std::size_t>& kept);
+
+}  // namespace mdhd::geom
