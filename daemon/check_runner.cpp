@@ -56,6 +56,7 @@ check::SimulationOptions simulationOptions(const protocol::JobOptions& o) {
   s.seed = o.seed;
   s.three_way = o.three_way;
   s.contact_tolerance = o.contactTolerance();
+  s.chain_tolerance = o.chainTolerance();
   return s;
 }
 

@@ -35,6 +35,10 @@ struct JobOptions {
   bool three_way = true;
   std::optional<double> contact_tolerance;  // default: half the grid spacing
   double contactTolerance() const { return contact_tolerance.value_or(0.5 / density); }
+  // Raster chains' points dropped within this (mm; mdhd extension): default half of
+  // `tolerance`, 0 exact.
+  std::optional<double> chain_tolerance;
+  double chainTolerance() const { return chain_tolerance.value_or(0.5 * tolerance); }
 };
 
 // Work offset slots in G-code order: G54 G55 G56 G57 G58 G59 G59.1 G59.2 G59.3.

@@ -68,9 +68,9 @@ std::array<std::array<double, 3>, 9> workOffsets(const json& j, const std::strin
 }
 
 JobOptions options(const json& j, const std::string& field) {
-  requireObject(
-      j, field,
-      {"density", "steps", "tolerance", "ruleset", "seed", "three_way", "contact_tolerance"});
+  requireObject(j, field,
+                {"density", "steps", "tolerance", "ruleset", "seed", "three_way",
+                 "contact_tolerance", "chain_tolerance"});
   JobOptions o;
   if (const json* v = optional(j, "density")) {
     o.density = positive(*v, field + ".density");
@@ -112,6 +112,14 @@ JobOptions options(const json& j, const std::string& field) {
     const double t = number(*v, field + ".contact_tolerance");
     if (t < 0.0) throw FieldError(field + ".contact_tolerance", "must be >= 0");
     o.contact_tolerance = t;
+  }
+  if (const json* v = optional(j, "chain_tolerance")) {
+    const double t = number(*v, field + ".chain_tolerance");
+    if (t < 0.0) throw FieldError(field + ".chain_tolerance", "must be >= 0");
+    if (t > o.tolerance) {
+      throw FieldError(field + ".chain_tolerance", "must be at most options.tolerance");
+    }
+    o.chain_tolerance = t;
   }
   return o;
 }

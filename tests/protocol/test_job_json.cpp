@@ -53,9 +53,24 @@ TEST(JobJson, Defaults) {
   EXPECT_EQ(job.options.seed, 1u);
   EXPECT_TRUE(job.options.three_way);
   EXPECT_DOUBLE_EQ(job.options.contactTolerance(), 0.05);
+  EXPECT_DOUBLE_EQ(job.options.chainTolerance(), 0.005);
   EXPECT_EQ(job.stock.lo.z, -40.0);
   EXPECT_EQ(job.stock.hi.x, 100.0);
   for (const auto& w : job.work_offsets) EXPECT_EQ(w, (std::array<double, 3>{0, 0, 0}));
+}
+
+TEST(JobJson, ChainToleranceIsAtMostTheTolerance) {
+  json j = minimalJob();
+  j["options"] = {{"tolerance", 0.02}, {"chain_tolerance", 0.0}};
+  EXPECT_DOUBLE_EQ(jobFromJson(j).options.chainTolerance(), 0.0);
+  j["options"]["chain_tolerance"] = 0.02;
+  EXPECT_DOUBLE_EQ(jobFromJson(j).options.chainTolerance(), 0.02);
+  j["options"].erase("chain_tolerance");
+  EXPECT_DOUBLE_EQ(jobFromJson(j).options.chainTolerance(), 0.01);  // half the tolerance
+  for (const json& bad : {json(-0.001), json(0.03), json("x")}) {
+    j["options"]["chain_tolerance"] = bad;
+    EXPECT_EQ(fieldOfError(j), "options.chain_tolerance") << bad;
+  }
 }
 
 TEST(JobJson, WorkOffsetsAndFixtures) {

@@ -231,8 +231,8 @@ TEST(JobSchema, ErrorsNameTheField) {
        "work_offsets.G60: unknown field (known: G54 G55 G56 G57 G58 G59 G59.1 G59.2 G59.3)"},
       {"/fixtures/1/cylinder/radius", 0, "fixtures[1].cylinder.radius: must be > 0, got 0"},
       {"/options/colour", "red",
-       "options.colour: unknown field (known: contact_tolerance density ruleset seed steps "
-       "three_way tolerance)"},
+       "options.colour: unknown field (known: chain_tolerance contact_tolerance density ruleset "
+       "seed steps three_way tolerance)"},
   };
   for (const Case& c : cases) {
     json job = fullJob();
