@@ -346,17 +346,23 @@ void columnsAfterCut(const ThreeMap& m, Scratch& s) {
     return family == 0 ? static_cast<std::size_t>(r) * cols.nu + e
                        : static_cast<std::size_t>(e) * cols.nu + r;
   };
+  // A row's marks span few of a tall cell's levels: only the span marked is scanned,
+  // and cleared as it is, so the marks start each row all clear.
+  int kmin = levels, kmax = -1;
   const auto mark = [&](int first, int count, int k0, int k1) {
-    for (int k = std::max(first, k0); k <= std::min(first + count - 1, k1); ++k)
-      if (k - base >= 0 && k - base < levels) s.levelMarks[k - base] = 1;
+    const int lo = std::max({first, k0, base}) - base;
+    const int hi = std::min({first + count - 1, k1, base + levels - 1}) - base;
+    for (int k = lo; k <= hi; ++k) s.levelMarks[k] = 1;
+    if (lo <= hi) kmin = std::min(kmin, lo), kmax = std::max(kmax, hi);
   };
+  s.levelMarks.assign(static_cast<std::size_t>(levels), 0);
   s.lineU.clear();
   s.lineV.clear();
   for (int r = 0; r < m.rowCount(family); ++r) {
     const bool rowChanged = s.rowStart[r] != s.rowStart[r + 1];
     const int ry = box.lo[y] + r;
     if (!rowChanged && (ry < region.lo[y] || ry > region.hi[y])) continue;
-    s.levelMarks.assign(static_cast<std::size_t>(levels), 0);
+    kmin = levels, kmax = -1;
     int first = 0, count = 0;
     if (rowChanged) {
       for (int e = 0; e < edges; ++e) {
@@ -371,8 +377,9 @@ void columnsAfterCut(const ThreeMap& m, Scratch& s) {
         mark(first, count, region.lo[a], region.hi[a]);
       }
     }
-    for (int k = 0; k < levels; ++k) {
+    for (int k = kmin; k <= kmax; ++k) {
       if (!s.levelMarks[k]) continue;
+      s.levelMarks[k] = 0;
       s.lineU.push_back(levelIsU ? base + k : ry);
       s.lineV.push_back(levelIsU ? ry : base + k);
     }
