@@ -2,19 +2,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
+#include <span>
+#include <vector>
 
 namespace mdhd::check {
 namespace {
 
-// Where a line leaves or enters solid, in grid units: `lower` ends have solid
-// after them along the axis (outward normal -axis), `upper` ends before them.
+// Where the lines of a region leave or enter solid, in grid units, line after line in
+// one array per kind (no vector per line: a region holds a million lines): `lower`
+// ends have solid after them along the axis (outward normal -axis), `upper` ends
+// before them.
 struct Crossings {
-  std::vector<double> lower;
-  std::vector<double> upper;
+  std::vector<double> values[2];        // lower, upper
+  std::vector<std::uint32_t> start[2];  // line i's are values[end][start[i] .. start[i + 1])
+  std::span<const double> of(std::size_t line, int end) const {
+    return std::span<const double>(values[end])
+        .subspan(start[end][line], start[end][line + 1] - start[end][line]);
+  }
 };
 
-std::optional<double> nearest(const std::vector<double>& values, double c, double within) {
+std::optional<double> nearest(std::span<const double> values, double c, double within) {
   std::optional<double> best;
   for (double v : values)
     if (std::abs(v - c) <= within && (!best || std::abs(v - c) < std::abs(*best - c))) best = v;
@@ -23,8 +32,8 @@ std::optional<double> nearest(const std::vector<double>& values, double c, doubl
 
 // Slope of the surface through crossing c across the neighbouring lines (grid units):
 // nullopt when neither neighbour has a matching crossing (steeper than this axis sees).
-std::optional<double> slope(const std::vector<double>* before, const std::vector<double>* after,
-                            double c) {
+std::optional<double> slope(const std::span<const double>* before,
+                            const std::span<const double>* after, double c) {
   constexpr double kWithin = 1.5;
   const auto b = before != nullptr ? nearest(*before, c, kWithin) : std::nullopt;
   const auto a = after != nullptr ? nearest(*after, c, kWithin) : std::nullopt;
@@ -62,35 +71,44 @@ double axisArea(const mdh::Stock& stock, const mdh::GridBox& box, int axis) {
   const mdh::GridSpec& g = stock.grid();
   const int u = mdh::axisU(axis), v = mdh::axisV(axis);
   const int nu = box.points(u), nv = box.points(v);
-  std::vector<Crossings> lines(static_cast<std::size_t>(nu) * nv);
+  const std::size_t count = static_cast<std::size_t>(nu) * nv;
+  Crossings lines;
+  for (int end = 0; end < 2; ++end) lines.start[end].reserve(count + 1);
   std::vector<geom::Interval> spans;
   const double lo = box.lo[axis], hi = box.hi[axis];
   for (int jv = 0; jv < nv; ++jv)
     for (int ju = 0; ju < nu; ++ju) {
       stock.solidIntervals(axis, box.lo[u] + ju, box.lo[v] + jv, spans);
-      Crossings& c = lines[static_cast<std::size_t>(jv) * nu + ju];
+      for (int end = 0; end < 2; ++end)
+        lines.start[end].push_back(static_cast<std::uint32_t>(lines.values[end].size()));
       for (const geom::Interval& s : spans) {
         const double a = g.toGrid(axis, s.lo), b = g.toGrid(axis, s.hi);
         // The stock box's own faces are raw material, not machined surface.
-        if (a > 1e-9 && a >= lo && a <= hi) c.lower.push_back(a);
-        if (b < g.cubes[axis] - 1e-9 && b >= lo && b <= hi) c.upper.push_back(b);
+        if (a > 1e-9 && a >= lo && a <= hi) lines.values[0].push_back(a);
+        if (b < g.cubes[axis] - 1e-9 && b >= lo && b <= hi) lines.values[1].push_back(b);
       }
     }
-  auto at = [&](int ju, int jv) -> const Crossings* {
-    if (ju < 0 || jv < 0 || ju >= nu || jv >= nv) return nullptr;
-    return &lines[static_cast<std::size_t>(jv) * nu + ju];
-  };
+  for (int end = 0; end < 2; ++end)
+    lines.start[end].push_back(static_cast<std::uint32_t>(lines.values[end].size()));
   double area = 0.0;
   for (int jv = 0; jv < nv; ++jv)
     for (int ju = 0; ju < nu; ++ju) {
-      const Crossings& here = lines[static_cast<std::size_t>(jv) * nu + ju];
+      const std::size_t here = static_cast<std::size_t>(jv) * nu + ju;
       for (int end = 0; end < 2; ++end) {
-        auto pick = [end](const Crossings* c) {
-          return c != nullptr ? (end == 0 ? &c->lower : &c->upper) : nullptr;
+        // A neighbour's crossings of the same kind, or none outside the region.
+        const auto at = [&](int iu, int iv, std::span<const double>& out) {
+          if (iu < 0 || iv < 0 || iu >= nu || iv >= nv) return false;
+          out = lines.of(static_cast<std::size_t>(iv) * nu + iu, end);
+          return true;
         };
-        for (double c : end == 0 ? here.lower : here.upper) {
-          const auto su = slope(pick(at(ju - 1, jv)), pick(at(ju + 1, jv)), c);
-          const auto sv = slope(pick(at(ju, jv - 1)), pick(at(ju, jv + 1)), c);
+        std::span<const double> bu, au, bv, av;
+        const std::span<const double>* beforeU = at(ju - 1, jv, bu) ? &bu : nullptr;
+        const std::span<const double>* afterU = at(ju + 1, jv, au) ? &au : nullptr;
+        const std::span<const double>* beforeV = at(ju, jv - 1, bv) ? &bv : nullptr;
+        const std::span<const double>* afterV = at(ju, jv + 1, av) ? &av : nullptr;
+        for (double c : lines.of(here, end)) {
+          const auto su = slope(beforeU, afterU, c);
+          const auto sv = slope(beforeV, afterV, c);
           // Another axis sees this surface at a better angle: it counts it there.
           if (!su || !sv || std::abs(*su) > 1.0 || std::abs(*sv) > 1.0) continue;
           const double norm = std::sqrt(1.0 + *su * *su + *sv * *sv);

@@ -33,21 +33,33 @@ void partialSegments(const ThreeMap& m, int axis, const std::array<int, 3>& at,
   const int r = at[other] - box.lo[other];
   const int k = at[a];
   const int n = box.points(axis);
-  std::vector<std::uint8_t> solid(n);
-  std::vector<double> cross(n - 1, std::nan(""));
-  for (int e = 0; e < n; ++e) solid[e] = m.solidAt(m.rowHeight(family, r, e), k);
+  // Scratch kept per thread: a query over every grid line of a region (the overhang
+  // area) asks this once per line and cell.
+  thread_local std::vector<int> counts;
+  thread_local std::vector<std::uint8_t> solid;
+  thread_local std::vector<double> cross;
+  thread_local std::vector<Span> segs;
+  counts.resize(n);
+  solid.resize(n);
+  cross.assign(n - 1, std::nan(""));
+  for (int e = 0; e < n; ++e) {
+    const double h = m.rowHeight(family, r, e);
+    counts[e] = m.solidCount(h);
+    solid[e] = m.solidAt(h, k);
+  }
   std::size_t pos = 0;
   for (int e = 0; e + 1 < n; ++e) {
-    const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
     int first = 0, count = 0;
-    m.straddle(h0, h1, first, count);
+    m.straddleCounts(counts[e], counts[e + 1], first, count);
     if (k >= first && k < first + count) {
-      cross[e] = m.threeWay() ? m.row(family, r)[pos + (k - first)]
-                              : m.interpolatedCrossing(h0, h1, box.lo[axis] + e, k);
+      cross[e] = m.threeWay()
+                     ? m.row(family, r)[pos + (k - first)]
+                     : m.interpolatedCrossing(m.rowHeight(family, r, e),
+                                              m.rowHeight(family, r, e + 1), box.lo[axis] + e, k);
     }
     pos += count;
   }
-  std::vector<Span> segs;
+  segs.clear();
   segmentsFromSamples(box.lo[axis], solid, cross, segs);
   out.insert(out.end(), segs.begin(), segs.end());
 }
