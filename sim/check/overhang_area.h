@@ -13,6 +13,7 @@ namespace mdhd::check {
 
 inline constexpr double kOverhangNormalZ = -0.01;
 
-double overhangArea(const mdh::Stock& stock);
+// `threads` (>= 1) read the grid lines; the area is the same for any count.
+double overhangArea(const mdh::Stock& stock, int threads = 1);
 
 }  // namespace mdhd::check

@@ -538,7 +538,7 @@ Report Simulation::snapshot(std::int64_t blocks) const {
   OverhangStats overhang = overhang_;
   const auto& d = report.mdh.directions;
   overhang.cells_not_plus_z = d[0] + d[1] + d[2] + d[3] + d[5];
-  overhang.area_mm2 = overhangArea(*stock_);
+  overhang.area_mm2 = overhangArea(*stock_, stock_->threads());
   report.collisions = episodes_.collisions();
   report.status = report.collisions.empty() ? Status::kClean : Status::kCollisions;
   report.stats = std::move(stats);

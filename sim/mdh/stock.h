@@ -133,6 +133,8 @@ class Stock {
   void forEachLeaf(const std::function<void(const LeafView&)>& visit) const;
 
   const GridSpec& grid() const { return grid_; }
+  // The threads a cut runs on (StockOptions::threads, 0 resolved to the machine's).
+  int threads() const { return threads_; }
   const StockOptions& options() const { return options_; }
   std::uint64_t steps() const { return step_; }
 
