@@ -27,9 +27,11 @@ struct Scratch {
   std::vector<Span> before, after, pieces;
   std::vector<double> heights, row, oldCrossings;
   std::vector<std::uint8_t> changed;
-  std::vector<int> counts;               // solid vertex count of every column before the cut
-  std::vector<int> newCounts;            // of the row being rebuilt, after it
-  std::vector<int> rowLines;             // the z lines a row of columns asks for
+  std::vector<int> counts;     // solid vertex count of every column before the cut
+  std::vector<int> newCounts;  // of the row being rebuilt, after it
+  std::vector<int> rowLines;   // the z lines a row of columns asks for
+  std::vector<Span> rowSpans;  // their intervals, when the cell computes them itself
+  std::vector<std::size_t> rowEnds;
   std::vector<int> newCountsMap;         // solid vertex counts after the cut, every column
   std::vector<std::uint8_t> changedMap;  // the columns that moved, every column
   std::vector<std::uint8_t> levelMarks;  // the levels a row of edges will ask for
@@ -408,6 +410,10 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   const double below = up ? cache.lowest(2) - kMargin : cache.highest(2) + kMargin;
   const auto underTool = [&](double h) { return up ? h <= below : h >= below; };
   const bool rowFill = a == 2 && cache.rowsPay(a);
+  // A cell as tall as the stock is the only one to ask for its z lines (but for the
+  // columns on its sides, which a neighbour computes again, to the same bits): it
+  // computes them itself, without the shared slots' claims and stores.
+  const bool ownLines = rowFill && box.lo[a] == 0 && box.hi[a] == cache.grid().cubes[a];
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv) {
     if (rowFill) {
       // The row's lines that the loop below will ask for, filled body by body in one
@@ -417,14 +423,25 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
         const double h = cols.at(cu - box.lo[u], cv - box.lo[v]);
         if (!underTool(h)) s.rowLines.push_back(cu);
       }
-      if (s.rowLines.size() > 1) cache.fillRow(a, cv, s.rowLines);
+      if (ownLines)
+        cache.rowSpans(a, cv, s.rowLines, s.rowSpans, s.rowEnds);
+      else if (s.rowLines.size() > 1)
+        cache.fillRow(a, cv, s.rowLines);
     }
+    std::size_t line = 0;  // ownLines: the next of the row's lines
     for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
       const double h = cols.at(iu, iv);
       // An empty column of a z map has nothing to lose: no need to ask for its line.
       if (a == 2 && underTool(h)) continue;
-      const auto tool = cache.line(a, cu, cv);
+      std::span<const Span> tool;
+      if (ownLines) {  // the same columns as the row's lines, in the same order
+        const std::size_t from = line == 0 ? 0 : s.rowEnds[line - 1];
+        tool = std::span<const Span>(s.rowSpans.data() + from, s.rowEnds[line] - from);
+        ++line;
+      } else {
+        tool = cache.line(a, cu, cv);
+      }
       if (tool.empty() && a == 2) continue;
       // In a z map, most columns under the tool are not reached below their
       // top (behind the tool, above the part): they keep their height, as

@@ -217,6 +217,48 @@ void IntervalCache::fillRow(int axis, int iv, std::span<const int> ius) const {
   });
 }
 
+void IntervalCache::rowSpans(int axis, int iv, std::span<const int> ius, std::vector<Span>& out,
+                             std::vector<std::size_t>& ends) const {
+  if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
+  out.clear();
+  ends.assign(ius.size(), 0);
+  const Lines& l = lines_[axis];
+  thread_local std::vector<double> us;
+  thread_local std::vector<std::size_t> at, mmEnds;
+  thread_local std::vector<geom::Interval> mm;
+  us.clear();
+  at.clear();
+  // A band maps lines to its first level: the answers are the ones line() gives there.
+  int v = iv;
+  if (l.band == 1 && band_.holds(v)) v = band_.lo;
+  for (std::size_t j = 0; j < ius.size(); ++j) {
+    int iu = ius[j], w = v;
+    std::size_t slot = 0;
+    if (!slotOf(l, iu, w, slot)) continue;
+    us.push_back(grid_.toMm(axisU(axis), iu));
+    at.push_back(j);
+  }
+  if (!us.empty()) {
+    mm.clear();
+    mmEnds.resize(us.size());
+    solid_.rowIntervals(axis, us, grid_.toMm(axisV(axis), v), mm, mmEnds);
+  }
+  // store()'s cleaning, line by line, into `out`.
+  std::size_t from = 0, k = 0;
+  for (std::size_t j = 0; j < ius.size(); ++j) {
+    if (k < at.size() && at[k] == j) {
+      const std::size_t first = out.size();
+      for (std::size_t m = from; m < mmEnds[k]; ++m) {
+        const Span s{snap(grid_.toGrid(axis, mm[m].lo)), snap(grid_.toGrid(axis, mm[m].hi))};
+        if (s.hi > s.lo) out.push_back(s);  // drops NaN and inverted intervals
+      }
+      out.resize(first + sortAndMerge(out.data() + first, out.size() - first));
+      from = mmEnds[k++];
+    }
+    ends[j] = out.size();
+  }
+}
+
 void IntervalCache::fillLines(int axis, std::span<const int> ius, std::span<const int> ivs) const {
   if (static_cast<unsigned>(axis) > 2u || !(axes_ & (1u << axis))) wrongAxis();
   thread_local std::vector<Claimed> claimed;

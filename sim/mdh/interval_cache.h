@@ -61,6 +61,7 @@ class IntervalCache {
   IntervalCache(const IntervalCache&) = delete;
   IntervalCache& operator=(const IntervalCache&) = delete;
 
+  const GridSpec& grid() const { return grid_; }
   // Vertex box covering the solid's bounds, clipped to the stock (may be empty).
   const GridBox& touched() const { return touched_; }
   // The solid's bounds along `axis` in grid units, unclipped: no line meets it
@@ -86,6 +87,12 @@ class IntervalCache {
   void fillRow(int axis, int iv, std::span<const int> ius) const;
   // Whether fillRow along `axis` is cheaper per line than line() (LineSolid::rowsPay).
   bool rowsPay(int axis) const { return solid_.rowsPay(axis); }
+  // The same lines' intervals as line() would give them, computed for the caller
+  // alone (one LineSolid::rowIntervals call), with no slot claimed or filled: for lines
+  // only one cell asks for, such as the z lines of a brick as tall as the stock. Line
+  // i's are out[ends[i - 1] .. ends[i]) (from 0 for i = 0); outside the box, none.
+  void rowSpans(int axis, int iv, std::span<const int> ius, std::vector<Span>& out,
+                std::vector<std::size_t>& ends) const;
   // The same for any lines along `axis`, line i through (ius[i], ivs[i]), in any order
   // (one LineSolid::linesIntervals call): the x and y lines a cut will ask for at many
   // levels and rows.

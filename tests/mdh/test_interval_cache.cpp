@@ -301,6 +301,41 @@ TEST(IntervalCache, ARowFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked)
   }
 }
 
+TEST(IntervalCache, RowSpansAreWhatLineGivesWithNoSlotFilled) {
+  const GridSpec g = grid();
+  const geom::SweptVolume sweep = ballChain();
+  for (int axis = 0; axis < 3; ++axis) {
+    CountingSolid counting(sweep);
+    IntervalCache own(g, counting), single(g, sweep);
+    const GridBox& t = own.touched();
+    const int u = axisU(axis), v = axisV(axis);
+    int lines = 0, nonEmpty = 0;
+    for (int iv = t.lo[v] - 1; iv <= t.hi[v] + 1; ++iv) {
+      std::vector<int> ius;  // every other line, some outside the box
+      for (int iu = t.lo[u] - 2; iu <= t.hi[u] + 2; iu += 2) ius.push_back(iu);
+      std::vector<Span> spans;
+      std::vector<std::size_t> ends;
+      own.rowSpans(axis, iv, ius, spans, ends);
+      ASSERT_EQ(ends.size(), ius.size());
+      for (std::size_t j = 0; j < ius.size(); ++j) {
+        const std::size_t from = j == 0 ? 0 : ends[j - 1];
+        const auto want = single.line(axis, ius[j], iv);
+        ASSERT_EQ(ends[j] - from, want.size()) << axis << " " << ius[j] << " " << iv;
+        for (std::size_t k = 0; k < want.size(); ++k) {
+          // The same bits: the same row kernel as a fill, cleaned as a slot is.
+          EXPECT_EQ(std::memcmp(&spans[from + k], &want[k], sizeof(Span)), 0);
+        }
+        ++lines;
+        nonEmpty += !want.empty();
+      }
+    }
+    EXPECT_GT(nonEmpty, 20) << axis;
+    EXPECT_GT(lines, nonEmpty) << axis;    // lines outside the box answer empty
+    EXPECT_EQ(own.queries(), 0u) << axis;  // no slot was filled
+    EXPECT_EQ(counting.singles[axis], 0) << axis;
+  }
+}
+
 TEST(IntervalCache, ALinesFillGivesEveryLineWhatLineWouldOnceAndOnlyTheLinesAsked) {
   const GridSpec g = grid();
   const geom::SweptVolume sweep = ballChain();
