@@ -46,14 +46,21 @@ class ScopeTimer {
   Clock::time_point start_;
 };
 
-mdh::StockOptions stockOptions(const SimulationOptions& o, const kin::Machine& machine) {
+mdh::StockOptions stockOptions(const SimulationOptions& o, const kin::Machine& machine,
+                               const std::vector<geom::Tool>& tools, const geom::Aabb& stock) {
   mdh::StockOptions s;
   s.brick_z = o.brick_z;
   if (o.brick_z == SimulationOptions::kBrickZAuto) {
     const bool rotary =
         std::any_of(machine.joints.begin(), machine.joints.end(),
                     [](const kin::Joint& j) { return j.type == kin::JointType::kRotary; });
-    s.brick_z = rotary ? -1 : 0;
+    // Flutes as long as the stock is tall remove whole columns: no overhang can
+    // arise. Shorter ones can leave one under a buried shank (a crash), and a cell
+    // that unpacks or answers grid lines across it costs its height in levels.
+    const double height = stock.hi.z - stock.lo.z;
+    const bool throughFlutes = std::all_of(
+        tools.begin(), tools.end(), [&](const geom::Tool& t) { return t.flute_length >= height; });
+    s.brick_z = rotary ? -1 : throughFlutes ? 0 : SimulationOptions::kBrickZCap;
   }
   s.density = o.density;
   s.three_way = o.three_way;
@@ -106,7 +113,7 @@ Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>
       if (!part->empty()) p.reach = std::max(p.reach, part->reach());
     tools_.emplace(t.number, std::move(p));
   }
-  stock_ = std::make_unique<mdh::Stock>(stock, stockOptions(options_, kin.machine()));
+  stock_ = std::make_unique<mdh::Stock>(stock, stockOptions(options_, kin.machine(), tools, stock));
   contact_tolerance_ =
       options_.contact_tolerance >= 0.0 ? options_.contact_tolerance : 0.5 / options_.density;
   stats_.stock_volume_mm3 = stock_->volume();

@@ -56,8 +56,12 @@ struct SimulationOptions {
   bool fresh_regions = true;
   // The stock's bricks along z (mdh::StockOptions::brick_z): kBrickZAuto takes the
   // stock's height on a machine without rotary joints (the tool only ever cuts from
-  // above, so the maps stay +z) and cubes otherwise.
+  // above, so the maps stay +z) when every tool's flutes are as long as the stock is
+  // tall, bricks of kBrickZCap levels there otherwise (a buried shank can leave an
+  // overhang, and a taller cell costs its height to unpack and to answer lines across
+  // it), and cubes on a machine with rotary joints.
   static constexpr int kBrickZAuto = -2;
+  static constexpr int kBrickZCap = 256;
   int brick_z = kBrickZAuto;
 };
 

@@ -166,6 +166,17 @@ TEST(BrickShape, TallOnlyWhereNoRotaryJointTurnsTheTool) {
   rig::Rig forced;
   forced.options.brick_z = -1;
   EXPECT_EQ(rig::run(std::move(forced), "M30\n").mdh.leaves, 13 * 13 * 7);
+  // 40 mm tall (400 levels): flutes of 10 mm could leave an overhang under a buried
+  // shank, so bricks stop at 256 levels; flutes of 40 mm cut whole columns.
+  rig::Rig shortFlutes;
+  shortFlutes.stock = {{0, 0, -40}, {40, 40, 0}};
+  EXPECT_EQ(rig::run(std::move(shortFlutes), "M30\n").mdh.leaves, 13 * 13 * 2);
+  rig::Rig longFlutes;
+  longFlutes.stock = {{0, 0, -40}, {40, 40, 0}};
+  longFlutes.tools.push_back(rig::flatTool());
+  longFlutes.tools.back().flute_length = 40;
+  longFlutes.tools.back().length = 80;
+  EXPECT_EQ(rig::run(std::move(longFlutes), "M30\n").mdh.leaves, 13 * 13);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, CutBatching, ::testing::Values(1u, 2u, 3u, 4u, 5u, 6u));
