@@ -123,18 +123,13 @@ double processCpuSeconds() {
          u.ru_stime.tv_usec * 1e-6;
 }
 
-// One run in this process: simulation, then the mesh into the error sink.
-nlohmann::json simulate(const Case& c, double density, int threads, int batch, bool plain,
-                        int brickZ, double chainTolerance) {
+// One run in this process at `density` with the command line's `options`: simulation,
+// then the mesh into the error sink.
+nlohmann::json simulate(const Case& c, double density, check::SimulationOptions options) {
   const kin::Kinematics kin(c.machine);
   const std::vector<geom::Tool> tools{ballTool()};
-  check::SimulationOptions options;
   options.density = density;
-  options.threads = threads;
-  if (batch > 0) options.batch_steps = batch;
-  options.three_way = !plain;
-  options.brick_z = brickZ;
-  options.chain_tolerance = chainTolerance;
+  const int threads = options.threads;
   const Clock::time_point t0 = Clock::now();
   check::Simulation sim(kin, tools, c.stock, {}, options);
   gcode::InterpreterConfig config;
@@ -196,8 +191,8 @@ nlohmann::json simulate(const Case& c, double density, int threads, int batch, b
 }
 
 // The run in a child process, so that its peak memory is its own.
-nlohmann::json simulateInChild(const Case& c, double density, int threads, int batch, bool plain,
-                               int brickZ, double chainTolerance) {
+nlohmann::json simulateInChild(const Case& c, double density,
+                               const check::SimulationOptions& options) {
   int fds[2];
   if (pipe(fds) != 0) return {{"error", "pipe"}};
   const pid_t pid = fork();
@@ -205,7 +200,7 @@ nlohmann::json simulateInChild(const Case& c, double density, int threads, int b
     close(fds[0]);
     std::string text;
     try {
-      text = simulate(c, density, threads, batch, plain, brickZ, chainTolerance).dump();
+      text = simulate(c, density, options).dump();
     } catch (const std::exception& e) {
       text = nlohmann::json{{"error", e.what()}}.dump();
     }
@@ -287,10 +282,10 @@ std::vector<double> parseDensities(const std::string& s) {
 
 int main(int argc, char** argv) {
   std::vector<double> densities{5, 10, 20};
-  bool withFreecad = true, smoke = false, plain = false;
-  int threads = 1, only = 0, passes = -1, first = 0, batch = 0;
-  int brickZ = check::SimulationOptions::kBrickZAuto;
-  double chainTolerance = -1.0;
+  bool withFreecad = true, smoke = false;
+  int only = 0, passes = -1, first = 0;
+  check::SimulationOptions options;  // what the flags set; the density per run
+  options.threads = 1;               // --threads' default here
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--densities" && i + 1 < argc)
@@ -300,7 +295,7 @@ int main(int argc, char** argv) {
     else if (a == "--smoke")
       smoke = true;
     else if (a == "--threads" && i + 1 < argc)
-      threads = std::atoi(argv[++i]);
+      options.threads = std::atoi(argv[++i]);
     else if (a == "--only" && i + 1 < argc)
       only = std::atoi(argv[++i]);
     else if (a == "--passes" && i + 1 < argc)
@@ -308,13 +303,13 @@ int main(int argc, char** argv) {
     else if (a == "--first-pass" && i + 1 < argc)
       first = std::atoi(argv[++i]);
     else if (a == "--batch" && i + 1 < argc)
-      batch = std::atoi(argv[++i]);
+      options.batch_steps = std::max(1, std::atoi(argv[++i]));
     else if (a == "--chain-tolerance" && i + 1 < argc)
-      chainTolerance = std::atof(argv[++i]);
+      options.chain_tolerance = std::atof(argv[++i]);
     else if (a == "--brick-z" && i + 1 < argc)
-      brickZ = std::atoi(argv[++i]);
+      options.brick_z = std::atoi(argv[++i]);
     else if (a == "--plain")
-      plain = true;
+      options.three_way = false;
     else {
       std::fprintf(stderr,
                    "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
@@ -368,7 +363,7 @@ int main(int argc, char** argv) {
   std::vector<Run> ours, peer;
   for (const Case& c : cases)
     for (double d : densities) {
-      const nlohmann::json r = simulateInChild(c, d, threads, batch, plain, brickZ, chainTolerance);
+      const nlohmann::json r = simulateInChild(c, d, options);
       if (r.contains("error")) {
         std::printf("%-12s %4g error: %s\n", c.name.c_str(), d,
                     r["error"].get<std::string>().c_str());
