@@ -57,6 +57,18 @@ std::size_t sortAndMerge(Span* s, std::size_t n) {
   return kept;
 }
 
+// A line's intervals (mm) as grid units in `dst` (room for mm.size()): snapped, NaN
+// and inverted ones dropped, sorted and merged; returns how many are left.
+std::size_t cleanSpans(const GridSpec& grid, int axis, std::span<const geom::Interval> mm,
+                       Span* dst) {
+  std::size_t n = 0;
+  for (const geom::Interval& i : mm) {
+    const Span s{snap(grid.toGrid(axis, i.lo)), snap(grid.toGrid(axis, i.hi))};
+    if (s.hi > s.lo) dst[n++] = s;  // drops NaN and inverted intervals
+  }
+  return sortAndMerge(dst, n);
+}
+
 }  // namespace
 
 IntervalCache::IntervalCache(const GridSpec& grid, const geom::LineSolid& solid, LineStore* store,
@@ -116,28 +128,16 @@ IntervalCache::~IntervalCache() = default;
 
 void IntervalCache::store(std::span<const geom::Interval> mm, int axis,
                           LineStore::Slot& slot) const {
-  const auto toSpan = [&](const geom::Interval& i) {
-    return Span{snap(grid_.toGrid(axis, i.lo)), snap(grid_.toGrid(axis, i.hi))};
-  };
   if (mm.size() <= std::size(slot.inline_)) {
     // The usual answer (a convex tool: one interval, or none) is cleaned in the
     // slot itself, without the vector.
-    std::size_t n = 0;
-    for (const geom::Interval& i : mm) {
-      const Span s = toSpan(i);
-      if (s.hi > s.lo) slot.inline_[n++] = s;  // drops NaN and inverted intervals
-    }
-    slot.count = static_cast<std::uint32_t>(sortAndMerge(slot.inline_, n));
+    slot.count = static_cast<std::uint32_t>(cleanSpans(grid_, axis, mm, slot.inline_));
     slot.data = slot.inline_;
     return;
   }
   thread_local std::vector<Span> spans;
-  spans.clear();
-  for (const geom::Interval& i : mm) {
-    const Span s = toSpan(i);
-    if (s.hi > s.lo) spans.push_back(s);  // drops NaN and inverted intervals
-  }
-  const std::size_t kept = sortAndMerge(spans.data(), spans.size());
+  spans.resize(mm.size());
+  const std::size_t kept = cleanSpans(grid_, axis, mm, spans.data());
   slot.count = static_cast<std::uint32_t>(kept);
   if (kept <= std::size(slot.inline_)) {
     std::copy_n(spans.begin(), kept, slot.inline_);
@@ -243,16 +243,14 @@ void IntervalCache::rowSpans(int axis, int iv, std::span<const int> ius, std::ve
     mmEnds.resize(us.size());
     solid_.rowIntervals(axis, us, grid_.toMm(axisV(axis), v), mm, mmEnds);
   }
-  // store()'s cleaning, line by line, into `out`.
+  // Cleaned as store() cleans a slot, line by line, into `out`.
   std::size_t from = 0, k = 0;
   for (std::size_t j = 0; j < ius.size(); ++j) {
     if (k < at.size() && at[k] == j) {
       const std::size_t first = out.size();
-      for (std::size_t m = from; m < mmEnds[k]; ++m) {
-        const Span s{snap(grid_.toGrid(axis, mm[m].lo)), snap(grid_.toGrid(axis, mm[m].hi))};
-        if (s.hi > s.lo) out.push_back(s);  // drops NaN and inverted intervals
-      }
-      out.resize(first + sortAndMerge(out.data() + first, out.size() - first));
+      const std::span<const geom::Interval> line(mm.data() + from, mmEnds[k] - from);
+      out.resize(first + line.size());
+      out.resize(first + cleanSpans(grid_, axis, line, out.data() + first));
       from = mmEnds[k++];
     }
     ends[j] = out.size();
