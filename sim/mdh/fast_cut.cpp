@@ -96,8 +96,9 @@ bool edgeCrossings(const EdgeCut& c, int first, int count, const IntervalCache& 
     const bool o0 = c.up ? k <= c.oh0 : k >= c.oh0, o1 = c.up ? k <= c.oh1 : k >= c.oh1;
     const bool n0 = c.up ? k <= c.nh0 : k >= c.nh0, n1 = c.up ? k <= c.nh1 : k >= c.nh1;
     const unsigned states = o0 | o1 << 1 | n0 << 2 | n1 << 3;
-    if (!(tool.data() == lastTool && tool.size() == lastSize && oc == lastOld &&
-          states == lastStates)) {
+    // NaN (no crossing before) must match NaN: a wall the cut opens has none at any level.
+    const bool sameOld = oc == lastOld || (std::isnan(oc) && std::isnan(lastOld));
+    if (!(tool.data() == lastTool && tool.size() == lastSize && sameOld && states == lastStates)) {
       lastValue = edgeCrossingAfterCut(o0, o1, oc, n0, n1, c.start, tool);
       lastTool = tool.data(), lastSize = tool.size(), lastOld = oc, lastStates = states;
     }
