@@ -61,6 +61,11 @@ std::size_t sortAndMerge(Span* s, std::size_t n) {
 // and inverted ones dropped, sorted and merged; returns how many are left.
 std::size_t cleanSpans(const GridSpec& grid, int axis, std::span<const geom::Interval> mm,
                        Span* dst) {
+  if (mm.size() == 1) {  // the usual answer: nothing to sort or merge
+    const Span s{snap(grid.toGrid(axis, mm[0].lo)), snap(grid.toGrid(axis, mm[0].hi))};
+    dst[0] = s;
+    return s.hi > s.lo ? 1 : 0;  // drops NaN and inverted intervals
+  }
   std::size_t n = 0;
   for (const geom::Interval& i : mm) {
     const Span s{snap(grid.toGrid(axis, i.lo)), snap(grid.toGrid(axis, i.hi))};
