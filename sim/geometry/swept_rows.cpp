@@ -167,14 +167,16 @@ template <int kAxis>
   return count;
 }
 
+// Lines [at, at + n) of the call (us and vs start at line `at` too).
 MDHD_ROW_TARGETS bool bodyLines(int axis, const BodyFrame& f, const double* us, const double* vs,
-                                std::size_t n, CrossScratch& s) {
+                                std::size_t at, std::size_t n, CrossScratch& s) {
   const BodyFrame b = f;
   const auto run = [&](auto on) {
-    return bodyLinesOn<decltype(on)::value>(b, us, vs, n, s.hulls.any.data(), s.hulls.apart.data(),
-                                            s.hulls.lo.data(), s.hulls.hi.data(), s.keep.data(),
-                                            s.zeta.data(), s.h0.data(), s.za.data(), s.zb.data(),
-                                            s.lo.data(), s.hi.data()) > 0;
+    return bodyLinesOn<decltype(on)::value>(
+               b, us, vs, n, s.hulls.any.data() + at, s.hulls.apart.data() + at,
+               s.hulls.lo.data() + at, s.hulls.hi.data() + at, s.keep.data() + at,
+               s.zeta.data() + at, s.h0.data() + at, s.za.data() + at, s.zb.data() + at,
+               s.lo.data() + at, s.hi.data() + at) > 0;
   };
   if (axis == 0) return run(std::integral_constant<int, 0>{});
   if (axis == 1) return run(std::integral_constant<int, 1>{});
@@ -196,35 +198,39 @@ MDHD_ROW_TARGETS bool bodyLines(int axis, const BodyFrame& f, const double* us, 
                        1);
 }
 
-// Those lines gathered into pz/ph with their indices in idx; returns how many.
+// Those of lines [at, at + n) gathered into pz/ph with their indices (from `at`) in
+// idx; returns how many.
 MDHD_ROW_TARGETS std::size_t pieceLines(const PieceFrame& f, const double* us, const double* vs,
-                                        std::size_t n, CrossScratch& s) {
-  pieceMask(f, us, vs, n, s.keep.data(), s.za.data(), s.zb.data(), s.on.data());
+                                        std::size_t at, std::size_t n, CrossScratch& s) {
+  pieceMask(f, us, vs, n, s.keep.data() + at, s.za.data() + at, s.zb.data() + at, s.on.data() + at);
+  const double* zeta = s.zeta.data() + at;
+  const double* h0 = s.h0.data() + at;
+  const std::uint64_t* on = s.on.data() + at;
   std::size_t k = 0;
   for (std::size_t i = 0; i < n; ++i) {
     // Written always, kept where on: no branch.
     s.idx[k] = static_cast<std::uint32_t>(i);
-    s.pz[k] = s.zeta[i];
-    s.ph[k] = s.h0[i];
-    k += s.on[i];
+    s.pz[k] = zeta[i];
+    s.ph[k] = h0[i];
+    k += on[i];
   }
   return k;
 }
 
 // Adds the body's interval on each of its lines (lo, hi relative to the tip's `tip`)
 // to the line's hull (crossBodyInterval's result for every line the body holds).
-MDHD_ROW_TARGETS void mergeBody(double tip, std::size_t n, CrossScratch& s) {
+MDHD_ROW_TARGETS void mergeBody(double tip, std::size_t at, std::size_t n, CrossScratch& s) {
   using M = std::uint64_t;
-  const std::uint64_t* __restrict keep = s.keep.data();
-  const double* __restrict lo = s.lo.data();
-  const double* __restrict hi = s.hi.data();
+  const std::uint64_t* __restrict keep = s.keep.data() + at;
+  const double* __restrict lo = s.lo.data() + at;
+  const double* __restrict hi = s.hi.data() + at;
   const auto lane = [&](std::size_t i, double& ilo, double& ihi) {
     ilo = lo[i] + tip;
     ihi = hi[i] + tip;
     return keep[i] & M(hi[i] > lo[i]) & M(ihi > ilo);
   };
   Hulls& h = s.hulls;
-  mergeLanes(n, lane, h.any.data(), h.apart.data(), h.lo.data(), h.hi.data());
+  mergeLanes(n, lane, h.any.data() + at, h.apart.data() + at, h.lo.data() + at, h.hi.data() + at);
 }
 
 }  // namespace
@@ -302,13 +308,29 @@ void SweptVolume::crossLinesIntervals(int axis, std::span<const double> us,
   const int i2 = (axis + 2) % 3;
   thread_local CrossScratch s;
   s.reset(n);
+  // Lines in rows (a cell asks them row by row) come sorted on one coordinate: a body
+  // then only looks at the run of lines its box holds there (a short body of a long
+  // chain, at most a few of the rows); the others it would mask out line by line.
+  const bool byU = std::is_sorted(us.begin(), us.end());
+  const bool byV = !byU && std::is_sorted(vs.begin(), vs.end());
   for (const SweptBody& body : bodies_) {
     const CrossMove& mv = body.cross[axis];
     const BodyFrame f{coord(body.box.lo, i1), coord(body.box.hi, i1),   coord(body.box.lo, i2),
                       coord(body.box.hi, i2), coord(body.box.lo, axis), coord(body.box.hi, axis),
                       coord(body.tip, i1),    coord(body.tip, i2),      body.axis,
                       body.crossNormal[axis], mv.length * mv.zd,        body.linearTol};
-    if (!bodyLines(axis, f, us.data(), vs.data(), n, s)) continue;
+    std::size_t b = 0, e = n;
+    if (byU || byV) {
+      const std::span<const double> sorted = byU ? us : vs;
+      const double lo = byU ? f.u0 : f.v0, hi = byU ? f.u1 : f.v1;
+      b = static_cast<std::size_t>(std::lower_bound(sorted.begin(), sorted.end(), lo) -
+                                   sorted.begin());
+      e = static_cast<std::size_t>(std::upper_bound(sorted.begin() + b, sorted.end(), hi) -
+                                   sorted.begin());
+      if (b >= e) continue;
+    }
+    const std::size_t m = e - b;
+    if (!bodyLines(axis, f, us.data() + b, vs.data() + b, b, m, s)) continue;
     for (int pi = body.pieceBegin; pi < body.pieceEnd; ++pi) {
       const SweptPiece& p = pieces_[pi];
       const PieceFrame pf{p.q.z0,
@@ -317,18 +339,18 @@ void SweptVolume::crossLinesIntervals(int axis, std::span<const double> us,
                           coord(p.box.hi, i1),
                           coord(p.box.lo, i2),
                           coord(p.box.hi, i2)};
-      const std::size_t k = pieceLines(pf, us.data(), vs.data(), n, s);
+      const std::size_t k = pieceLines(pf, us.data() + b, vs.data() + b, b, m, s);
       if (k == 0) continue;
       crossExtentRow(p.q, mv, s.pz.data(), s.ph.data(), k, body.linearTol, body.quadricTol,
                      s.plo.data(), s.phi.data(), s.hit.data());
       for (std::size_t t = 0; t < k; ++t) {
-        const std::size_t j = s.idx[t];
+        const std::size_t j = b + s.idx[t];
         const bool on = s.hit[t];
         s.lo[j] = on ? std::min(s.lo[j], s.plo[t]) : s.lo[j];
         s.hi[j] = on ? std::max(s.hi[j], s.phi[t]) : s.hi[j];
       }
     }
-    mergeBody(coord(body.tip, axis), n, s);
+    mergeBody(coord(body.tip, axis), b, m, s);
   }
   s.hulls.emit(out, ends, [&](std::size_t i) { lineIntervals(axis, us[i], vs[i], out); });
 }
