@@ -185,18 +185,50 @@ Job jobFromJson(const json& j, ProgramRequirement program) {
   return job;
 }
 
+namespace {
+
+// nlohmann's message without its "[json.exception.parse_error.101] " prefix.
+std::string jsonMessage(const json::exception& e) {
+  std::string message = e.what();
+  if (const auto p = message.find("] ");
+      message.rfind("[json.exception", 0) == 0 && p != std::string::npos) {
+    message.erase(0, p + 2);
+  }
+  return message;
+}
+
+// "line L, column C" of the first occurrence of `token` in `text` ("" if absent).
+std::string placeOf(std::string_view text, std::string_view token) {
+  const std::size_t at = token.empty() ? std::string_view::npos : text.find(token);
+  if (at == std::string_view::npos) return {};
+  const std::string_view before = text.substr(0, at);
+  const std::size_t line =
+      1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+  const std::size_t lineStart = before.rfind('\n');
+  const std::size_t column = at - (lineStart == std::string_view::npos ? 0 : lineStart + 1) + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column) + ": ";
+}
+
+}  // namespace
+
 json parseJsonText(std::string_view text) {
   try {
     return json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
-    // nlohmann's message already says "parse error at line L, column C: ..."; drop its
-    // "[json.exception.parse_error.101] " prefix.
-    std::string message = e.what();
-    if (const auto p = message.find("] ");
-        message.rfind("[json.exception", 0) == 0 && p != std::string::npos) {
-      message.erase(0, p + 2);
-    }
-    throw FieldError("(document)", "invalid JSON: " + message);
+    // nlohmann's message already says "parse error at line L, column C: ...".
+    throw FieldError("(document)", "invalid JSON: " + jsonMessage(e));
+  } catch (const json::out_of_range& e) {
+    // A number no double holds ("number overflow parsing '1e400'"): nlohmann names the
+    // number but not its place, so find it.
+    const std::string message = jsonMessage(e);
+    const std::size_t open = message.find('\''), close = message.rfind('\'');
+    const std::string_view token =
+        open != std::string::npos && close > open
+            ? std::string_view(message).substr(open + 1, close - open - 1)
+            : std::string_view();
+    throw FieldError("(document)", "invalid JSON: " + placeOf(text, token) + message);
+  } catch (const json::exception& e) {
+    throw FieldError("(document)", "invalid JSON: " + jsonMessage(e));
   }
 }
 

@@ -75,7 +75,7 @@ template <Rises R>
                                                          : -1.0;
     } else {
       const double den = a - k2 * r.k2;
-      ds = (den > 0.0) & (cross2 <= r.r1sq * den) ? rhoMin2 * k2 * r.k2 / den : -1.0;
+      ds = ((den > 0.0) & (cross2 <= r.r1sq * den)) ? rhoMin2 * k2 * r.k2 / den : -1.0;
     }
     const bool take = !found & !(r.r1sq < rhoMin2) & (ds >= 0.0);
     delta = take ? std::max(ds, r.r0sq - rhoMin2) : delta;

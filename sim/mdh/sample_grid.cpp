@@ -130,13 +130,12 @@ bool SampleGrid::columnValid(Direction d, int cu, int cv) const {
   const int a = d.axis, n = n_[a];
   const std::size_t st = stride(a);
   const std::size_t i0 = index(vertex(a, box_.lo[a], cu, cv));
-  bool seenEmpty = false, seenSolid = false;
+  bool seenEmpty = false;
   for (int k = 0; k < n; ++k) {
     const int kk = d.sign > 0 ? k : n - 1 - k;
     const bool s = state_[i0 + kk * st] & kSolid;
     if (s && seenEmpty) return false;
     seenEmpty |= !s;
-    seenSolid |= s;
   }
   return true;
 }

@@ -93,7 +93,7 @@ std::vector<SampleDisagreement> sharedSampleDisagreements(const Stock& stock, st
   auto record = [&](const LeafView& leaf, const GridPoint& p, int axis, double value,
                     bool sampled) {
     const auto [it, fresh] =
-        seen.try_emplace(key(p, axis < 0 ? 3 : axis), leaf.box, value, sampled);
+        seen.try_emplace(key(p, axis < 0 ? 3 : axis), Said{leaf.box, value, sampled});
     if (fresh || it->second.box == leaf.box || out.size() >= limit) return;
     const Said& s = it->second;
     // Interpolated crossings (plain heightmaps) need only agree on being there.

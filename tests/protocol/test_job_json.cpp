@@ -161,5 +161,27 @@ TEST(JobJson, SyntaxErrorsGiveLineAndColumn) {
   }
 }
 
+// A number no double holds is nlohmann's out_of_range, not a parse_error: it must come
+// out as a FieldError with its place too, not escape (the fuzzer's first find: `mdhd
+// check` aborted on "density": 1e400).
+TEST(JobJson, NumbersTooLargeForADoubleAreErrorsWithTheirPlace) {
+  for (const char* number :
+       {"1e400", "-1e400",
+        "777777777777777777777777777777777777777777777777777777777777777777777777777777777777777777"
+        "777777777777777777777777777777777777777777777777777777777777777777777777777777777777777777"
+        "777777777777777777777777777777777777777777777777777777777777777777777777777777777777777777"
+        "77777777777777777777777777777777777777777e99"}) {
+    const std::string text = std::string("{\n  \"options\": { \"density\": ") + number + " }\n}";
+    try {
+      parseJsonText(text);
+      FAIL() << "no error for " << number;
+    } catch (const FieldError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("line 2, column 27"), std::string::npos) << what;
+      EXPECT_NE(what.find("number overflow"), std::string::npos) << what;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mdhd::protocol
