@@ -150,6 +150,17 @@ TEST_F(JobsApi, BadDocumentsAreRefusedWithWhatAndWhere) {
   EXPECT_EQ(malformed->status, 400);
   EXPECT_EQ(body(malformed)["error"]["code"], "bad_json");
 
+  // A number no double holds is the JSON's fault too, with its place (it escaped the
+  // parser's syntax errors once).
+  auto overflow =
+      cli->Post("/api/v1/jobs", "{\"options\": {\"density\": 1e400}}", "application/json");
+  ASSERT_TRUE(overflow);
+  EXPECT_EQ(overflow->status, 400);
+  EXPECT_EQ(body(overflow)["error"]["code"], "bad_json");
+  EXPECT_NE(body(overflow)["error"]["message"].get<std::string>().find("line 1, column 25"),
+            std::string::npos)
+      << body(overflow);
+
   nlohmann::json job = tinyJob();
   job["tools"][0]["diameter"] = -4;
   Posted p = postJob(*cli, job);
