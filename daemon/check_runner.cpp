@@ -119,7 +119,16 @@ check::Report runCheckJob(const LoadedJob& loaded, const CheckControls& controls
       if (pos.file.empty()) controls.progress(std::min(1.0, pos.line / lines), moves);
     });
   }
-  gcode::Interpreter interp(interpreterConfig(loaded), *sim);
+  gcode::InterpreterConfig config = interpreterConfig(loaded);
+  if (controls.cancel != nullptr) {
+    // The simulation looks at the flag every step; blocks without motion (an o-word
+    // loop of assignments) look here.
+    const std::atomic<bool>* cancel = controls.cancel;
+    config.each_line = [cancel] {
+      if (cancel->load(std::memory_order_relaxed)) throw check::Cancelled();
+    };
+  }
+  gcode::Interpreter interp(std::move(config), *sim);
   try {
     interp.run(openProgram(loaded));
   } catch (const gcode::GcodeError& e) {

@@ -15,10 +15,25 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Interpretation only: every motion is dropped.
+// A dry interpretation over its budget (service_job.h): a canned cycle of a hundred
+// million pecks is one block, a hundred million lines of loops run for minutes.
+struct DryBudgetSpent {};
+
+// Interpretation only: every motion is dropped; past the deadline, the next block or
+// the 1024th next motion stops the run.
 class NullSink : public gcode::MotionSink {
  public:
-  void motion(const gcode::Motion&) override {}
+  explicit NullSink(Clock::time_point deadline) : deadline_(deadline) {}
+  void motion(const gcode::Motion&) override {
+    if ((++motions_ & 1023u) == 0) checkDeadline();
+  }
+  void checkDeadline() const {
+    if (Clock::now() > deadline_) throw DryBudgetSpent{};
+  }
+
+ private:
+  Clock::time_point deadline_;
+  std::uint64_t motions_ = 0;
 };
 
 HttpError fieldError(const std::string& field, const std::string& message,
@@ -43,11 +58,15 @@ void resolveMachine(
   out.machine_name = name;
 }
 
-void dryInterpret(const cli::LoadedJob& loaded) {
-  NullSink sink;
-  gcode::Interpreter interp(cli::interpreterConfig(loaded), sink);
+void dryInterpret(const cli::LoadedJob& loaded, std::chrono::milliseconds budget) {
+  NullSink sink(Clock::now() + budget);
+  gcode::InterpreterConfig config = cli::interpreterConfig(loaded);
+  config.each_line = [&sink] { sink.checkDeadline(); };
+  gcode::Interpreter interp(std::move(config), sink);
   try {
     interp.run(cli::openProgram(loaded));
+  } catch (const DryBudgetSpent&) {
+    return;  // no error in what was read in time
   } catch (const gcode::GcodeError& e) {
     nlohmann::json extra = {{"line", e.line()}, {"column", e.column()}};
     if (!e.pos().file.empty()) extra["file"] = e.pos().file;
@@ -64,7 +83,8 @@ void dryInterpret(const cli::LoadedJob& loaded) {
 
 AcceptedJob acceptJob(
     nlohmann::json doc, std::size_t maxProgramBytes,
-    const std::function<std::optional<nlohmann::json>(const std::string&)>& lookupMachine) {
+    const std::function<std::optional<nlohmann::json>(const std::string&)>& lookupMachine,
+    std::chrono::milliseconds interpretBudget) {
   if (!doc.is_object()) throw fieldError("(document)", "a job must be a JSON object");
   for (const char* fileField : {"machine_file", "program_file"}) {
     if (doc.contains(fileField)) {
@@ -95,7 +115,7 @@ AcceptedJob acceptJob(
   } catch (const protocol::FieldError& e) {
     throw fieldError(e.field(), e.message());
   }
-  dryInterpret(loaded);
+  dryInterpret(loaded, interpretBudget);
   out.doc = std::move(doc);
   return out;
 }

@@ -3,6 +3,7 @@
 // strict codec, limits, and a dry interpretation so a program that does not
 // interpret is refused with its line and column), and runs an accepted one on a
 // worker exactly as `mdhd check` does (same runner, report and STL bytes).
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -20,12 +21,18 @@ struct AcceptedJob {
   std::string machine_name;  // when the job named a registered machine
 };
 
+// How long acceptJob interprets a program before it takes it on what it has read:
+// the request must not wait for a program of a hundred million pecks (its run is
+// bounded by max_job_seconds, and reports a later error itself).
+inline constexpr std::chrono::milliseconds kDryInterpretBudget{5000};
+
 // Checks a posted job. `lookupMachine` returns a registered machine's JSON or
 // nullopt. Throws HttpError: 400 (field, with "field"), 413 (program too long),
 // 422 (program does not interpret, with "line", "column", "block").
 AcceptedJob acceptJob(
     nlohmann::json doc, std::size_t maxProgramBytes,
-    const std::function<std::optional<nlohmann::json>(const std::string&)>& lookupMachine);
+    const std::function<std::optional<nlohmann::json>(const std::string&)>& lookupMachine,
+    std::chrono::milliseconds interpretBudget = kDryInterpretBudget);
 
 struct JobOutcome {
   std::string status;  // done (clean or collisions) or failed (report status error)

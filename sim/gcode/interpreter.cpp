@@ -22,6 +22,7 @@ void Interpreter::run(std::unique_ptr<LineSource> program) {
   const InterpreterConfig& config = executor_.config();
   ReaderOptions options;
   options.block_delete = config.block_delete;
+  options.each_line = config.each_line;
   Reader reader(std::move(program), params_, config.subroutine_loader, options);
   Block block;
   while (!executor_.ended() && reader.next(block)) {

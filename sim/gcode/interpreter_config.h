@@ -31,6 +31,10 @@ struct InterpreterConfig {
   // Splines (G5, G5.1, G5.2/G5.3) are handed on as feed moves along a polyline
   // that stays within this distance of the true curve (mm, > 0).
   double spline_tolerance = 0.001;
+  // Called for every line read (a loop's and a subroutine's again): a caller's chance
+  // to stop a run that makes no motion for a long time (an o-word loop of
+  // assignments), by throwing. Unset: nothing.
+  std::function<void()> each_line;
 };
 
 }  // namespace mdhd::gcode

@@ -90,6 +90,7 @@ bool Reader::readLine(int source_index) {
     throw GcodeError({src.file, e.line(), e.column()}, e.what());
   }
   if (!got) return false;
+  if (options_.each_line) options_.each_line();
   ref_.line = src.lines->lineNumber();
   if (++steps_ > options_.max_steps) {
     failLine(ref_.line, "Program exceeds the limit of " + std::to_string(options_.max_steps) +

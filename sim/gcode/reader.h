@@ -30,6 +30,7 @@ struct ReaderOptions {
   std::uint64_t max_steps = 100'000'000;  // physical lines read in total (loops count again)
   int max_call_depth = 10;  // call levels incl. the program: 9 nested calls (LinuxCNC: 10)
   std::uint64_t max_loop_iterations = 10'000'000;  // per while / do / repeat loop
+  std::function<void()> each_line;                 // called for every line read; may throw
 };
 
 // Returns the text of external subroutine `name` (o<name> call without a

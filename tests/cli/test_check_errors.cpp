@@ -1,11 +1,14 @@
 // mdhd check on broken jobs and programs (exit 2, a report whose error says what
 // and where), its arguments, the report's destinations and the mesh file.
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -194,6 +197,26 @@ TEST_F(CheckScratch, CancelStopsARunAtTheNextStep) {
   EXPECT_EQ(calls, 1);
   cancel = false;
   EXPECT_EQ(runCheckJob(loaded, {}).status, check::Status::kClean);
+}
+
+// A program that runs for long without a motion (an o-word loop of assignments: up
+// to a hundred million lines before the reader's limit) is stopped by the flag too,
+// at its next block: a service job's cancel and run-time limit reach it.
+TEST_F(CheckScratch, CancelStopsALoopWithoutMotions) {
+  const LoadedJob loaded = loadCheckedJobFile(
+      writeJob("#1 = 0\no100 while [#1 LT 9000000]\n#1 = [#1 + 1]\no100 endwhile\nG1 X5 F100\n"));
+  std::atomic<bool> cancel{false};
+  CheckControls controls;
+  controls.cancel = &cancel;
+  const auto start = std::chrono::steady_clock::now();
+  std::thread raise([&cancel] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    cancel = true;
+  });
+  EXPECT_THROW(runCheckJob(loaded, controls), check::Cancelled);
+  raise.join();
+  // 9 M iterations take several seconds; the flag stops them within a block.
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
 }
 
 }  // namespace

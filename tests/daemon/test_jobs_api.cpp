@@ -3,9 +3,13 @@
 // machines by name, every refusal with its status, paging, cancel, limits.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <optional>
 #include <sstream>
 
 #include "daemon/cli.h"
+#include "daemon/http_errors.h"
+#include "daemon/service_job.h"
 #include "job_helpers.h"
 #include "service_fixture.h"
 
@@ -221,6 +225,35 @@ TEST_F(JobsApi, BadDocumentsAreRefusedWithWhatAndWhere) {
   }
   auto list = getJson(*cli, "/api/v1/jobs");
   EXPECT_TRUE(list["jobs"].empty());  // nothing refused was stored
+}
+
+// The dry interpretation of a POST stops at its budget and takes the job on what it
+// read: a canned cycle of 110 million pecks (one block) or a loop of 9 million
+// assignments must not hold the request for minutes. An error the budget did not
+// reach is the run's to report; one it reached is still a 422.
+TEST(AcceptJob, DryInterpretationStopsAtItsBudget) {
+  const auto noMachines = [](const std::string&) -> std::optional<nlohmann::json> {
+    return std::nullopt;
+  };
+  for (const char* program :
+       {"G21 G90 G54\nT1 M6\nM3 S9000\nG0 X10 Y10 Z5\nG83 X10 Y10 Z-10 R1 Q0.0000001 "
+        "F100\nG80\nM30\n",
+        "#1 = 0\no100 while [#1 LT 9000000]\n#1 = [#1 + 1]\no100 endwhile\nG1 X5 F100 Q\nM30\n"}) {
+    nlohmann::json job = tinyJob();
+    job["program"] = program;
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_NO_THROW(service::acceptJob(job, 1u << 20, noMachines, std::chrono::milliseconds(200)))
+        << program;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2)) << program;
+  }
+  nlohmann::json bad = tinyJob();
+  bad["program"] = "G21 G90\nG1 X5 F100 Q\nM30\n";
+  try {
+    service::acceptJob(bad, 1u << 20, noMachines, std::chrono::milliseconds(200));
+    FAIL() << "no error";
+  } catch (const service::HttpError& e) {
+    EXPECT_EQ(e.status(), 422);
+  }
 }
 
 TEST_F(JobsApi, UnknownIdsAre404AndPathsNeverReachFiles) {
