@@ -121,7 +121,7 @@ check::Report runCheckJob(const LoadedJob& loaded, const CheckControls& controls
   }
   gcode::InterpreterConfig config = interpreterConfig(loaded);
   if (controls.cancel != nullptr) {
-    // The simulation looks at the flag every step; blocks without motion (an o-word
+    // The simulation looks at the flag every step; lines without motion (an o-word
     // loop of assignments) look here.
     const std::atomic<bool>* cancel = controls.cancel;
     config.each_line = [cancel] {

@@ -19,8 +19,8 @@ using Clock = std::chrono::steady_clock;
 // million pecks is one block, a hundred million lines of loops run for minutes.
 struct DryBudgetSpent {};
 
-// Interpretation only: every motion is dropped; past the deadline, the next block or
-// the 1024th next motion stops the run.
+// Interpretation only: every motion is dropped; past the deadline, the next line read
+// or the 1024th next motion stops the run.
 class NullSink : public gcode::MotionSink {
  public:
   explicit NullSink(Clock::time_point deadline) : deadline_(deadline) {}
