@@ -38,7 +38,6 @@ using namespace mdhd;
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kToolLength = 50.0;
 
 struct Args {

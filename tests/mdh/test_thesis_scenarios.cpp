@@ -87,7 +87,7 @@ TEST(ThesisScenarios, Figure1_3) {
   Scenario s;
   s.cut<BoxSolid>({-1, 0, 0}, glm::dvec3{-1, 1, 1.5}, glm::dvec3{1.5, 3, 3.0});
   EXPECT_EQ(s.stats().splits(), 0);
-  EXPECT_EQ(s.leafDirections(), std::vector<Direction>{Direction(0, -1)});
+  EXPECT_EQ(s.leafDirections(), (std::vector<Direction>{Direction{0, -1}}));
   const CutResult r = s.cut<BoxSolid>({0, 0, 1}, glm::dvec3{0.3, 1, 0.8}, glm::dvec3{1.0, 3, 2.0});
   EXPECT_TRUE(r.overhang);
   EXPECT_EQ(s.stats().splits(), 1);
@@ -124,7 +124,7 @@ TEST(ThesisScenarios, Figure3_8SideDrillSignConflict) {
   const Stats st = s.stats();
   EXPECT_EQ(st.splits(), 1);
   EXPECT_EQ(st.splitsSignConflict, 1);
-  EXPECT_TRUE(has(s.leafDirections(), Direction(0, -1)));
+  EXPECT_TRUE(has(s.leafDirections(), Direction{0, -1}));
   s.expectMatchesReference();
 }
 
@@ -138,8 +138,8 @@ TEST(ThesisScenarios, Figure3_10IndirectSplit) {
   const Stats st = s.stats();
   EXPECT_EQ(st.splits(), 1);
   EXPECT_EQ(st.splitsIndirect, 1);
-  EXPECT_TRUE(has(s.leafDirections(), Direction(0, -1)));
-  EXPECT_TRUE(has(s.leafDirections(), Direction(2, 1)));
+  EXPECT_TRUE(has(s.leafDirections(), Direction{0, -1}));
+  EXPECT_TRUE(has(s.leafDirections(), Direction{2, 1}));
   s.expectMatchesReference();
 }
 

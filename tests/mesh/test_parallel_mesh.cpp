@@ -107,7 +107,10 @@ TEST(ParallelMesh, WindowAndSlowWorkers) {
   // Microseconds per leaf on the calling thread and on workers: both quick, slow
   // workers (the calling thread takes their runs over), both slow (workers also
   // finish runs the calling thread has begun to take over).
-  for (auto [callerMicros, workerMicros] : {std::pair{20, 20}, {20, 1000}, {300, 300}}) {
+  for (const auto& [callerSlow, workerSlow] : {std::pair{20, 20}, {20, 1000}, {300, 300}}) {
+    // Plain copies: a lambda may not capture a structured binding before C++20's
+    // P1091 (clang 14).
+    const int callerMicros = callerSlow, workerMicros = workerSlow;
     const bool slowWorkers = workerMicros > 10 * callerMicros;
     for (int threads : {1, 2, 3}) {
       for (int window : {1, 2, 5}) {
