@@ -1,0 +1,60 @@
+// Replays job documents through the job fuzz function (fuzz/fuzz_job_json.cpp), so CI
+// without clang covers its property too: any text either fails with a FieldError or
+// gives a job the schema accepts as well, whose machine and tool parts build. The
+// example jobs, inline versions of them, the fuzzer's first crash (a number no double
+// holds) and deterministic mutations of each.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "fuzz/fuzz_job_json.cpp"
+
+namespace {
+
+std::string readShared(const std::string& name) {
+  std::ifstream in(std::string(MDHD_SHARED_DIR) + "/examples/" + name);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+int replay(const std::string& data) {
+  return LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
+}
+
+TEST(JobCorpusReplay, ExamplesInlineVersionsAndMutations) {
+  std::vector<std::string> corpus;
+  for (const char* name : {"contour-3axis", "crash-3axis", "side-drill-ac", "donut-bc"}) {
+    const std::string text = readShared(std::string(name) + ".json");
+    ASSERT_FALSE(text.empty()) << name;
+    corpus.push_back(text);
+    // The service's form: machine and program inline.
+    nlohmann::json job = nlohmann::json::parse(text);
+    job["machine"] = nlohmann::json::parse(readShared(job["machine_file"].get<std::string>()));
+    job["program"] = readShared(job["program_file"].get<std::string>());
+    job.erase("machine_file");
+    job.erase("program_file");
+    corpus.push_back(job.dump(1));
+  }
+  corpus.push_back("{\"options\": {\"density\": 1e400}}");
+  std::mt19937 random(4242);
+  const std::string alphabet = "{}[]\",:0123456789.-+eE truefalsnul\n\\";
+  for (const std::string& original : corpus) {
+    EXPECT_EQ(replay(original), 0);
+    for (int i = 0; i < 150; ++i) {
+      std::string data = original;
+      const std::size_t at = random() % data.size();
+      if (i % 3 == 0)
+        data.resize(at);
+      else if (i % 3 == 1)
+        data[at] = alphabet[random() % alphabet.size()];
+      else
+        data.insert(at, 1, alphabet[random() % alphabet.size()]);
+      EXPECT_EQ(replay(data), 0) << data;
+    }
+  }
+}
+
+}  // namespace
