@@ -10,6 +10,10 @@
 #include <sstream>
 
 #include "fuzz/fuzz_job_json.cpp"
+// The folder's tests build as one unit: each fuzz function under its own name.
+#define LLVMFuzzerTestOneInput fuzzModbusMapJson
+#include "fuzz/fuzz_modbus_map_json.cpp"
+#undef LLVMFuzzerTestOneInput
 
 namespace {
 
@@ -54,6 +58,41 @@ TEST(JobCorpusReplay, ExamplesInlineVersionsAndMutations) {
         data.insert(at, 1, alphabet[random() % alphabet.size()]);
       EXPECT_EQ(replay(data), 0) << data;
     }
+  }
+}
+
+// The shadow's `modbus` block: the contract's example and mutations through the
+// codec's round trip (fuzz/fuzz_modbus_map_json.cpp).
+TEST(ModbusMapCorpusReplay, ContractExampleAndMutations) {
+  const std::string example = R"({
+    "host": "127.0.0.1", "port": 502, "unit_id": 1, "poll_hz": 50, "timeout_ms": 200,
+    "table": "holding",
+    "joints": {
+      "X": { "address": 0, "type": "float32", "word_order": "abcd", "scale": 1.0 },
+      "Y": { "address": 2, "type": "float32" },
+      "C": { "address": 8, "type": "int32", "word_order": "cdab", "scale": 0.001 }
+    },
+    "tool": { "address": 10, "type": "uint16" },
+    "spindle_on": { "address": 11, "type": "uint16" },
+    "line": { "address": 12, "type": "uint32" },
+    "feed_hold": { "coil": 0, "enabled": false }
+  })";
+  const auto run = [](const std::string& data) {
+    return fuzzModbusMapJson(reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
+  };
+  EXPECT_EQ(run(example), 0);
+  std::mt19937 random(99);
+  const std::string alphabet = "{}[]\",:0123456789.-+eE truefalsnulabcdhxyz\n";
+  for (int i = 0; i < 600; ++i) {
+    std::string data = example;
+    const std::size_t at = random() % data.size();
+    if (i % 3 == 0)
+      data.resize(at);
+    else if (i % 3 == 1)
+      data[at] = alphabet[random() % alphabet.size()];
+    else
+      data.insert(at, 1, alphabet[random() % alphabet.size()]);
+    EXPECT_EQ(run(data), 0) << data;
   }
 }
 
