@@ -19,21 +19,19 @@ using Clock = std::chrono::steady_clock;
 // million pecks is one block, a hundred million lines of loops run for minutes.
 struct DryBudgetSpent {};
 
-// Interpretation only: every motion is dropped; past the deadline, the next line read
-// or the 1024th next motion stops the run.
+// Interpretation only: every motion is dropped. Lines read and motions both tick;
+// every 1024th tick past the deadline stops the run (the clock is not read per line).
 class NullSink : public gcode::MotionSink {
  public:
   explicit NullSink(Clock::time_point deadline) : deadline_(deadline) {}
-  void motion(const gcode::Motion&) override {
-    if ((++motions_ & 1023u) == 0) checkDeadline();
-  }
-  void checkDeadline() const {
-    if (Clock::now() > deadline_) throw DryBudgetSpent{};
+  void motion(const gcode::Motion&) override { tick(); }
+  void tick() {
+    if ((++ticks_ & 1023u) == 0 && Clock::now() > deadline_) throw DryBudgetSpent{};
   }
 
  private:
   Clock::time_point deadline_;
-  std::uint64_t motions_ = 0;
+  std::uint64_t ticks_ = 0;
 };
 
 HttpError fieldError(const std::string& field, const std::string& message,
@@ -61,7 +59,7 @@ void resolveMachine(
 void dryInterpret(const cli::LoadedJob& loaded, std::chrono::milliseconds budget) {
   NullSink sink(Clock::now() + budget);
   gcode::InterpreterConfig config = cli::interpreterConfig(loaded);
-  config.each_line = [&sink] { sink.checkDeadline(); };
+  config.each_line = [&sink] { sink.tick(); };
   gcode::Interpreter interp(std::move(config), sink);
   try {
     interp.run(cli::openProgram(loaded));

@@ -14,18 +14,18 @@
 #define LLVMFuzzerTestOneInput fuzzModbusMapJson
 #include "fuzz/fuzz_modbus_map_json.cpp"
 #undef LLVMFuzzerTestOneInput
+#include "tests/fuzz_replay.h"
 
 namespace {
+
+using mdhd::test_support::forEachMutation;
+using mdhd::test_support::runFuzzFunction;
 
 std::string readShared(const std::string& name) {
   std::ifstream in(std::string(MDHD_SHARED_DIR) + "/examples/" + name);
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-int replay(const std::string& data) {
-  return LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
 }
 
 TEST(JobCorpusReplay, ExamplesInlineVersionsAndMutations) {
@@ -46,18 +46,10 @@ TEST(JobCorpusReplay, ExamplesInlineVersionsAndMutations) {
   std::mt19937 random(4242);
   const std::string alphabet = "{}[]\",:0123456789.-+eE truefalsnul\n\\";
   for (const std::string& original : corpus) {
-    EXPECT_EQ(replay(original), 0);
-    for (int i = 0; i < 150; ++i) {
-      std::string data = original;
-      const std::size_t at = random() % data.size();
-      if (i % 3 == 0)
-        data.resize(at);
-      else if (i % 3 == 1)
-        data[at] = alphabet[random() % alphabet.size()];
-      else
-        data.insert(at, 1, alphabet[random() % alphabet.size()]);
-      EXPECT_EQ(replay(data), 0) << data;
-    }
+    EXPECT_EQ(runFuzzFunction(LLVMFuzzerTestOneInput, original), 0);
+    forEachMutation(original, 150, alphabet, random, [](const std::string& data) {
+      EXPECT_EQ(runFuzzFunction(LLVMFuzzerTestOneInput, data), 0) << data;
+    });
   }
 }
 
@@ -77,23 +69,12 @@ TEST(ModbusMapCorpusReplay, ContractExampleAndMutations) {
     "line": { "address": 12, "type": "uint32" },
     "feed_hold": { "coil": 0, "enabled": false }
   })";
-  const auto run = [](const std::string& data) {
-    return fuzzModbusMapJson(reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
-  };
-  EXPECT_EQ(run(example), 0);
+  EXPECT_EQ(runFuzzFunction(fuzzModbusMapJson, example), 0);
   std::mt19937 random(99);
   const std::string alphabet = "{}[]\",:0123456789.-+eE truefalsnulabcdhxyz\n";
-  for (int i = 0; i < 600; ++i) {
-    std::string data = example;
-    const std::size_t at = random() % data.size();
-    if (i % 3 == 0)
-      data.resize(at);
-    else if (i % 3 == 1)
-      data[at] = alphabet[random() % alphabet.size()];
-    else
-      data.insert(at, 1, alphabet[random() % alphabet.size()]);
-    EXPECT_EQ(run(data), 0) << data;
-  }
+  forEachMutation(example, 600, alphabet, random, [](const std::string& data) {
+    EXPECT_EQ(runFuzzFunction(fuzzModbusMapJson, data), 0) << data;
+  });
 }
 
 }  // namespace
