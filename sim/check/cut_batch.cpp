@@ -1,6 +1,7 @@
 #include "sim/check/cut_batch.h"
 
 #include <algorithm>
+#include <memory>
 
 #include "sim/geometry/polyline_simplify.h"
 
@@ -71,9 +72,11 @@ void CutBatch::flush(mdh::Stock& stock,
     geom::FreshRegion region;
     for (const geom::FreshRegion& f : fresh_)
       region.pieces.insert(region.pieces.end(), f.pieces.begin(), f.pieces.end());
-    const geom::SweptVolume chain = geom::SweptVolume::chainOfTranslations(
-        *part_, simplifiedChain(poses_, straight_, chainTolerance_));
-    if (const auto r = stock.cutIfFast(chain, direction_, &region, steps)) {
+    // Shared: the stock's cells may keep it for crossings they compute later.
+    auto chain = std::make_shared<const geom::SweptVolume>(geom::SweptVolume::chainOfTranslations(
+        *part_, simplifiedChain(poses_, straight_, chainTolerance_)));
+    if (const auto r = stock.cutIfFast(std::shared_ptr<const geom::LineSolid>(std::move(chain)),
+                                       direction_, &region, steps)) {
       cut(lines_[0], *r);
       ++stats_.batches;
       stats_.steps += static_cast<std::int64_t>(steps);

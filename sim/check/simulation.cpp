@@ -64,6 +64,7 @@ mdh::StockOptions stockOptions(const SimulationOptions& o, const kin::Machine& m
   }
   s.density = o.density;
   s.three_way = o.three_way;
+  s.lazy_crossings = o.lazy_crossings;
   s.ruleset = o.ruleset;
   s.seed = o.seed;
   s.threads = o.threads;
@@ -524,6 +525,7 @@ void Simulation::fixtureContacts(const Step& step) {
 
 void Simulation::closeToolRemoval(int next) {
   if (removal_touched_) {
+    stock_->settle();  // on the stock's threads, before volume() reads the maps
     const double v = stock_->volume();
     toolUse(stats_, removal_tool_).removed_volume_mm3 += removal_start_ - v;
     removal_start_ = v;
@@ -559,6 +561,7 @@ Report Simulation::snapshot(std::int64_t blocks) const {
 Report Simulation::finish(std::int64_t blocks) {
   flushCuts();
   const Clock::time_point t0 = Clock::now();
+  stock_->settle();  // the crossings cuts left pending, on the stock's threads
   Report report = snapshot(blocks);
   timing_.finish_ms += msSince(t0);
   timing_.total_ms = msSince(started_);

@@ -63,6 +63,9 @@ struct SimulationOptions {
   static constexpr int kBrickZAuto = -2;
   static constexpr int kBrickZCap = 256;
   int brick_z = kBrickZAuto;
+  // Batched cuts leave the crossings across z maps to be computed when needed
+  // (mdh::StockOptions::lazy_crossings): the same report to the bit; false for comparing.
+  bool lazy_crossings = true;
 };
 
 // Thrown out of motion() when the cancel flag is raised; the interpreter passes it on.

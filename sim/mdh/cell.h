@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 
+#include "sim/geometry/line_solid.h"
 #include "sim/mdh/grid.h"
 #include "sim/mdh/three_map.h"
 
@@ -15,6 +16,16 @@ enum class CellState : std::uint8_t { kEmpty, kSolid, kPartial, kInner };
 
 inline constexpr double kStaleVolume = std::numeric_limits<double>::quiet_NaN();
 
+// A cut whose crossings across a z map's columns are not computed yet (lazy
+// crossings, lazy_crossings.h): the solid that made it and the part of the cell it
+// reached. Its columns are cut; its x and y grid lines are asked only for the
+// crossings that are still there when someone needs them. No solid: none pending.
+struct PendingCut {
+  std::shared_ptr<const geom::LineSolid> solid;
+  GridBox reach;
+  explicit operator bool() const { return solid != nullptr; }
+};
+
 struct Cell {
   GridBox box;
   CellState state = CellState::kSolid;
@@ -23,6 +34,7 @@ struct Cell {
   int splitAxis = -1;
   int splitAt = 0;
   std::unique_ptr<ThreeMap> map;
+  PendingCut pending;  // partial leaves with a z map only
   std::unique_ptr<Cell> child[2];
 
   double boxVolume() const {

@@ -6,6 +6,7 @@
 // in place), and if none does it is split by the chosen split plane and both
 // children are cut again.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -34,6 +35,9 @@ struct CutContext {
   std::uint64_t seed = 1;
   std::uint64_t step = 0;
   CutCounters& counters;
+  // When set (the solid being cut), 3-way z maps take the cut with their crossings
+  // left pending (lazy_crossings.h); other maps settle theirs and cut as usual.
+  std::shared_ptr<const geom::LineSolid> lazySolid = nullptr;
 };
 
 void cutCell(Cell& cell, const CutContext& ctx);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "sim/mdh/lazy_crossings.h"
 #include "sim/mdh/line_segments.h"
 #include "sim/mdh/vertex_rule.h"
 
@@ -32,10 +33,11 @@ struct Scratch {
   std::vector<int> rowLines;   // the z lines a row of columns asks for
   std::vector<Span> rowSpans;  // their intervals, when the cell computes them itself
   std::vector<std::size_t> rowEnds;
-  std::vector<int> newCountsMap;         // solid vertex counts after the cut, every column
-  std::vector<std::uint8_t> changedMap;  // the columns that moved, every column
-  std::vector<std::uint8_t> levelMarks;  // the levels a row of edges will ask for
-  std::vector<int> lineU, lineV;         // the x or y lines the family loop will ask for
+  std::vector<int> newCountsMap;          // solid vertex counts after the cut, every column
+  std::vector<std::uint8_t> changedMap;   // the columns that moved, every column
+  std::vector<std::uint8_t> levelMarks;   // the levels a row of edges will ask for
+  std::vector<int> lineU, lineV;          // the x or y lines the family loop will ask for
+  std::vector<std::size_t> movedColumns;  // fastCutLazy: the changes' column indices
 };
 
 // The parent heights and what solid counts need, held in locals: the loops
@@ -390,14 +392,10 @@ void columnsAfterCut(const ThreeMap& m, Scratch& s) {
   if (s.lineU.size() > 1) cache.fillLines(x, s.lineU, s.lineV);
 }
 
-}  // namespace
-
-FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                double* volumeDelta) {
-  thread_local Scratch s;
-  if (volumeDelta != nullptr) *volumeDelta = 0.0;
-  const GridBox region = map.box().intersect(reach);
-  if (region.empty()) return FastCut::kUnchanged;
+// The columns the cut reaches, in s.changes (those whose height moves); false if
+// one is no longer a single solid run from the base face (an overhang).
+bool cutColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+                const GridBox& region, Scratch& s) {
   const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
   const GridBox& box = map.box();
   s.changes.clear();
@@ -456,10 +454,25 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
       base[v] = cv;
       const bool ok = a == 2 ? cutZColumn(map, h, tool, s, nh)
                              : cutSideColumn(map, h, tool, base, cache, reach, nh);
-      if (!ok) return FastCut::kOverhang;
+      if (!ok) return false;
       if (!(nh == h)) s.changes.push_back({iu, iv, nh});
     }
   }
+  return true;
+}
+
+}  // namespace
+
+FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+                double* volumeDelta) {
+  thread_local Scratch s;
+  if (volumeDelta != nullptr) *volumeDelta = 0.0;
+  const GridBox region = map.box().intersect(reach);
+  if (region.empty()) return FastCut::kUnchanged;
+  if (!cutColumns(map, cache, reach, region, s)) return FastCut::kOverhang;
+  const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
+  const GridBox& box = map.box();
+  const Columns cols(map);
   if (s.changes.empty() && !map.threeWay()) return FastCut::kUnchanged;
   // volume() is a sum of edge terms (1/2 per square holding the edge) minus
   // column terms (1/4 per square holding the column): the change is that of
@@ -522,6 +535,27 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   if (!moved) return FastCut::kUnchanged;
   for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
   if (volume) *volumeDelta = edgeDelta + delta;
+  return FastCut::kDone;
+}
+
+FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+                    const PendingCut& pending) {
+  thread_local Scratch s;
+  const GridBox region = map.box().intersect(reach);
+  if (region.empty()) return FastCut::kUnchanged;
+  if (!cutColumns(map, cache, reach, region, s)) return FastCut::kOverhang;
+  const Columns cols(map);
+  const std::size_t columns = static_cast<std::size_t>(map.columnsU()) * map.columnsV();
+  s.counts.resize(columns);
+  for (std::size_t i = 0; i < columns; ++i) s.counts[i] = cols.solidCount(cols.h[i]);
+  columnsAfterCut(map, s);
+  // The pending cut's crossings first, on the heights it left, where this cut keeps them.
+  settleCrossings(map, pending, cache.grid(), s.newCountsMap.data());
+  s.movedColumns.clear();
+  for (const ColumnChange& c : s.changes)
+    s.movedColumns.push_back(static_cast<std::size_t>(c.iv) * cols.nu + c.iu);
+  relayoutCrossings(map, s.counts.data(), s.newCountsMap.data(), s.movedColumns);
+  for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
   return FastCut::kDone;
 }
 

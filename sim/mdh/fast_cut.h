@@ -4,6 +4,7 @@
 // their one solid segment); rows of embedded heights through changed columns
 // are rebuilt, and in the other rows the tool's box reaches the crossings move
 // in place (a cut can move a crossing without changing any column).
+#include "sim/mdh/cell.h"
 #include "sim/mdh/grid.h"
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/three_map.h"
@@ -18,5 +19,12 @@ enum class FastCut { kUnchanged, kDone, kOverhang };
 // change, and the edges between them.
 FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
                 double* volumeDelta);
+
+// The same cut into a 3-way z map with its crossings left pending (lazy_crossings.h):
+// `pending` (the map's pending cut, or none) is settled first where this cut leaves
+// its crossings, and the caller makes this cut the pending one. kDone whenever the
+// cut reaches the map (whether a crossing moves is known only once it is settled).
+FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+                    const PendingCut& pending);
 
 }  // namespace mdhd::mdh

@@ -11,6 +11,7 @@
 #include "sim/mdh/cut_cell.h"
 #include "sim/mdh/fresh_reach.h"
 #include "sim/mdh/interval_cache.h"
+#include "sim/mdh/lazy_crossings.h"
 #include "sim/mdh/rng.h"
 #include "sim/mdh/shared_samples.h"
 #include "sim/mdh/vertex_drops.h"
@@ -123,6 +124,21 @@ CutResult Stock::result(const CutCounters& step) const {
 std::optional<CutResult> Stock::cutIfFast(const geom::LineSolid& solid,
                                           const glm::dvec3& toolDirection,
                                           const geom::FreshRegion* fresh, std::uint64_t steps) {
+  return cutIfFastWith(solid, nullptr, toolDirection, fresh, steps);
+}
+
+std::optional<CutResult> Stock::cutIfFast(std::shared_ptr<const geom::LineSolid> solid,
+                                          const glm::dvec3& toolDirection,
+                                          const geom::FreshRegion* fresh, std::uint64_t steps) {
+  const geom::LineSolid& s = *solid;
+  const bool lazy = options_.lazy_crossings && options_.three_way && !options_.step_volumes;
+  return cutIfFastWith(s, lazy ? std::move(solid) : nullptr, toolDirection, fresh, steps);
+}
+
+std::optional<CutResult> Stock::cutIfFastWith(const geom::LineSolid& solid,
+                                              std::shared_ptr<const geom::LineSolid> lazySolid,
+                                              const glm::dvec3& toolDirection,
+                                              const geom::FreshRegion* fresh, std::uint64_t steps) {
   const glm::dvec3 tool_direction = usableDirection(toolDirection);
   IntervalCache cache(grid_, solid, lines_.get());
   if (cache.touched().empty()) {
@@ -133,20 +149,64 @@ std::optional<CutResult> Stock::cutIfFast(const geom::LineSolid& solid,
   // and vertex drops follow only from slow cuts: no event, no slow path.
   BrickUndo undo;
   ++step_;
-  const CutCounters step = cutBricks(cache, tool_direction, fresh, &undo);
+  const bool lazy = lazySolid != nullptr;
+  const CutCounters step = cutBricks(cache, tool_direction, fresh, &undo, std::move(lazySolid));
   if (step.overhangEvents > 0 || !step.dropped.empty()) {
     for (std::size_t i = 0; i < undo.bricks.size(); ++i)
       roots_[static_cast<std::size_t>(undo.bricks[i])] = std::move(undo.before[i]);
     --step_;
     return std::nullopt;
   }
+  if (lazy) pending_.store(true, std::memory_order_release);
   step_ += steps - 1;
   totals_.add(step);
   return result(step);
 }
 
+namespace {
+
+void settleSubtree(Cell& cell, const GridSpec& grid) {
+  if (cell.state == CellState::kInner) {
+    for (auto& child : cell.child) settleSubtree(*child, grid);
+    return;
+  }
+  settlePending(cell, grid);
+}
+
+}  // namespace
+
+void Stock::settleBricks(int workers) {
+  std::vector<std::size_t> due;
+  for (std::size_t i = 0; i < roots_.size(); ++i)
+    if (roots_[i].state == CellState::kInner || roots_[i].pending) due.push_back(i);
+  const std::function<void(std::size_t)> work = [&](std::size_t k) {
+    settleSubtree(roots_[due[k]], grid_);
+  };
+  if (workers > 1 && due.size() > 1) {
+    if (!pool_) pool_ = std::make_unique<WorkerPool>(threads_);
+    pool_->run(due.size(), workers, work);
+  } else {
+    for (std::size_t k = 0; k < due.size(); ++k) work(k);
+  }
+  pending_.store(false, std::memory_order_release);
+}
+
+void Stock::settle() {
+  if (!pending_.load(std::memory_order_acquire)) return;
+  const std::lock_guard lock(settleMutex_);
+  if (pending_.load(std::memory_order_acquire)) settleBricks(threads_);
+}
+
+void Stock::ensureSettled() const {
+  if (!pending_.load(std::memory_order_acquire)) return;
+  const std::lock_guard lock(settleMutex_);
+  // One thread, on this one: the query may itself run on the stock's workers.
+  if (pending_.load(std::memory_order_acquire)) const_cast<Stock*>(this)->settleBricks(1);
+}
+
 CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direction,
-                             const geom::FreshRegion* fresh, BrickUndo* undo) {
+                             const geom::FreshRegion* fresh, BrickUndo* undo,
+                             std::shared_ptr<const geom::LineSolid> lazySolid) {
   const GridBox& t = cache.touched();
   std::vector<int> items;
   std::vector<GridBox> reach;
@@ -192,7 +252,8 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
                          toolRadius_ / grid_.h,
                          options_.seed,
                          step_,
-                         counters[i]};
+                         counters[i],
+                         lazySolid};
     cutCell(roots_[items[i]], ctx);
   };
   // Waking a helper costs microseconds: small steps stay on this thread.
@@ -212,6 +273,7 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
 }
 
 void Stock::checkInvariants() const {
+  ensureSettled();
   for (const Cell& root : roots_) checkCell(root);
   const auto disagreements = sharedSampleDisagreements(*this, 1);
   if (!disagreements.empty())

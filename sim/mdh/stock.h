@@ -3,9 +3,11 @@
 // a uniform sampling grid, every partial cell a (3-way) heightmap in one of
 // the six axis directions. The only way in is a LineSolid per in-between step.
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <vector>
@@ -42,6 +44,10 @@ struct StockOptions {
   // of the volume change (a tenth of a 3-axis step) and reports 0; volume() is
   // exact either way (it integrates the maps, not the cells' cached volumes).
   bool step_volumes = true;
+  // Crossings across a z map's columns computed when needed rather than by every
+  // batch cut (cutIfFast with a shared solid, step_volumes off: lazy_crossings.h).
+  // The same stock to the bit either way; off for comparing the two.
+  bool lazy_crossings = true;
 };
 
 struct CutResult {
@@ -107,6 +113,15 @@ class Stock {
   // copy of the bricks it reaches, kept for the undo.
   std::optional<CutResult> cutIfFast(const geom::LineSolid& solid, const glm::dvec3& tool_direction,
                                      const geom::FreshRegion* fresh, std::uint64_t steps);
+  // The same with the solid shared: the cells may keep it for crossings they compute
+  // later (StockOptions::lazy_crossings), which every query below settles first and
+  // settle() computes at once, on the stock's threads. CutResult::touched is then true
+  // whenever the cut reaches a partial z map.
+  std::optional<CutResult> cutIfFast(std::shared_ptr<const geom::LineSolid> solid,
+                                     const glm::dvec3& tool_direction,
+                                     const geom::FreshRegion* fresh, std::uint64_t steps);
+  // Computes every pending crossing (a no-op when none is).
+  void settle();
   void setToolRadius(double mm) { toolRadius_ = mm; }
 
   Overlap probe(const geom::LineSolid& solid, double tolerance = 0.0) const;
@@ -152,7 +167,17 @@ class Stock {
     std::vector<Cell> before;
   };
   CutCounters cutBricks(IntervalCache& cache, const glm::dvec3& toolDirection,
-                        const geom::FreshRegion* fresh, BrickUndo* undo = nullptr);
+                        const geom::FreshRegion* fresh, BrickUndo* undo = nullptr,
+                        std::shared_ptr<const geom::LineSolid> lazySolid = nullptr);
+  std::optional<CutResult> cutIfFastWith(const geom::LineSolid& solid,
+                                         std::shared_ptr<const geom::LineSolid> lazySolid,
+                                         const glm::dvec3& toolDirection,
+                                         const geom::FreshRegion* fresh, std::uint64_t steps);
+  // Settles pending crossings before a query reads the maps: logically const (the
+  // stock's solid is the same before and after), serialised for queries made from
+  // several threads at once.
+  void ensureSettled() const;
+  void settleBricks(int workers);
   CutResult result(const CutCounters& step) const;
   // Solid segments (grid units, merged across cells) of one grid line.
   void gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const;
@@ -168,6 +193,9 @@ class Stock {
   std::uint64_t step_ = 0;
   double toolRadius_ = 0.0;
   int threads_ = 1;
+  // Whether some cell may hold a pending cut (set by lazy cuts, cleared by settle).
+  std::atomic<bool> pending_{false};
+  mutable std::mutex settleMutex_;
 };
 
 }  // namespace mdhd::mdh

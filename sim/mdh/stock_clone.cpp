@@ -12,6 +12,7 @@ void copyCell(const Cell& from, Cell& to) {
   to.splitAxis = from.splitAxis;
   to.splitAt = from.splitAt;
   if (from.map) to.map = std::make_unique<ThreeMap>(*from.map);
+  to.pending = from.pending;  // the solid is shared, never changed
   for (int i = 0; i < 2; ++i) {
     if (!from.child[i]) continue;
     to.child[i] = std::make_unique<Cell>();
@@ -27,7 +28,8 @@ Stock::Stock(const Stock& other, CloneTag)
       totals_(other.totals_),
       step_(other.step_),
       toolRadius_(other.toolRadius_),
-      threads_(other.threads_) {
+      threads_(other.threads_),
+      pending_(other.pending_.load(std::memory_order_acquire)) {
   for (int a = 0; a < 3; ++a) brickSize_[a] = other.brickSize_[a];
   for (std::size_t i = 0; i < roots_.size(); ++i) copyCell(other.roots_[i], roots_[i]);
 }

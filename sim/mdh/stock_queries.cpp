@@ -133,6 +133,8 @@ bool Stock::isSolid(const glm::dvec3& p) const {
 
 void Stock::solidIntervals(int axis, int iu, int iv, std::vector<geom::Interval>& out) const {
   out.clear();
+  // Pending cuts (lazy_crossings.h) are only ever in z maps, whose z lines are their heights.
+  if (axis != 2) ensureSettled();
   const int u = axisU(axis), v = axisV(axis);
   if (axis < 0 || axis > 2 || iu < 0 || iu > grid_.cubes[u] || iv < 0 || iv > grid_.cubes[v])
     throw std::out_of_range("mdh: grid line (" + std::to_string(axis) + ", " + std::to_string(iu) +
@@ -176,6 +178,7 @@ void Stock::gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) c
 }
 
 SurfaceArea Stock::area() const {
+  ensureSettled();
   // Projected areas from the crossings of every grid line: each crossing of
   // an a line stands for h^2 of surface projected along a, signed by which
   // side is solid. Uses all three families of samples, and is exact for
@@ -296,6 +299,7 @@ bool Stock::removesMaterial(const geom::LineSolid& solid, const geom::FreshRegio
 }
 
 void Stock::forEachLeaf(const std::function<void(const LeafView&)>& f) const {
+  ensureSettled();
   for (const Cell& root : roots_) visit(root, f);
 }
 

@@ -51,6 +51,7 @@ std::int64_t countNodes(const Cell& c, std::size_t& bytes) {
 }  // namespace
 
 Stats Stock::stats() const {
+  ensureSettled();  // the rows' sizes are those of the settled maps
   Stats s;
   s.memoryBytes =
       sizeof(Stock) + roots_.capacity() * sizeof(Cell) + options_.ruleset.capacity() * sizeof(Rule);

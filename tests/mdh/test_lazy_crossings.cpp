@@ -1,0 +1,236 @@
+// Lazy crossings (sim/mdh/lazy_crossings.h): batches cut with a shared solid leave
+// the crossings across z maps to be computed later. Whatever is asked in between and
+// in whatever order, the stock must be the one the eager cuts leave, to the bit: every
+// grid line's intervals, the stats, the volume.
+#include <cstdint>
+#include <memory>
+#include <ostream>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "sim/geometry/swept_volume.h"
+#include "sim/geometry/tool_fresh_region.h"
+#include "sim/mdh/stock.h"
+#include "tests/mdh/random_tool_moves.h"
+#include "tests/mdh/stock_lines.h"
+#include "tests/mdh/wavy_rows.h"
+
+namespace mdhd::mdh {
+namespace {
+
+const geom::Aabb& kBox = testing::kWavyStock;
+
+StockOptions options(bool lazy, int brickZ = -1) {
+  StockOptions o = testing::wavyOptions();
+  o.step_volumes = false;  // lazy crossings need it off (as mdhd check runs)
+  o.lazy_crossings = lazy;
+  o.brick_z = brickZ;
+  return o;
+}
+
+// What a test does between batches, to the lazy and the eager stock alike.
+enum class Between { kNothing, kQueryLines, kSingleSteps };
+
+// The zigzag in batches of `batch` steps, each cut through the shared-solid cutIfFast
+// (lazy when the stock's options say so), refused ones step by step; with kSingleSteps
+// every third batch is cut step by step (Stock::cut settles the cells it reaches),
+// with kQueryLines an x line through the last pose is read after every batch.
+void cutRows(Stock& stock, const geom::ToolPart& part, const std::vector<geom::ToolPose>& poses,
+             std::size_t batch, Between between) {
+  const auto step = [&](std::size_t i) {
+    const auto s = geom::SweptVolume::between(part, poses[i - 1], poses[i], 0, 0.01);
+    const auto fresh = geom::freshRegion(part, poses[i - 1], poses[i]);
+    stock.cut(s, poses[i].axis, i > 1 && fresh ? &*fresh : nullptr);
+  };
+  step(1);
+  std::vector<geom::Interval> line;
+  int n = 0;
+  for (std::size_t first = 2; first < poses.size(); first += batch, ++n) {
+    const std::size_t last = std::min(poses.size() - 1, first + batch - 1);
+    if (between == Between::kSingleSteps && n % 3 == 2) {
+      for (std::size_t i = first; i <= last; ++i) step(i);
+      continue;
+    }
+    geom::FreshRegion fresh;
+    for (std::size_t i = first; i <= last; ++i) {
+      const geom::FreshRegion one = geom::freshRegion(part, poses[i - 1], poses[i]).value();
+      fresh.pieces.insert(fresh.pieces.end(), one.pieces.begin(), one.pieces.end());
+    }
+    auto chain = std::make_shared<const geom::SweptVolume>(geom::SweptVolume::chainOfTranslations(
+        part, std::span(poses).subspan(first - 1, last - first + 2)));
+    if (!stock.cutIfFast(std::shared_ptr<const geom::LineSolid>(chain), poses[first].axis, &fresh,
+                         last - first + 1))
+      for (std::size_t i = first; i <= last; ++i) step(i);
+    if (between == Between::kQueryLines) {
+      const GridSpec& g = stock.grid();
+      const int iy = static_cast<int>(std::lround(g.toGrid(1, poses[last].tip.y)));
+      const int iz = static_cast<int>(std::lround(g.toGrid(2, poses[last].tip.z)));
+      stock.solidIntervals(0, iy, std::clamp(iz, 0, g.cubes[2]), line);
+    }
+  }
+}
+
+void expectSameStock(const Stock& lazy, const Stock& eager) {
+  EXPECT_EQ(testing::differences(testing::allIntervals(lazy), testing::allIntervals(eager)), 0);
+  EXPECT_EQ(lazy.volume(), eager.volume());
+  const Stats a = lazy.stats(), b = eager.stats();
+  EXPECT_EQ(a.leaves, b.leaves);
+  EXPECT_EQ(a.embeddedSamples, b.embeddedSamples);
+  EXPECT_EQ(a.directions, b.directions);
+  EXPECT_EQ(a.overhangEvents, b.overhangEvents);
+  lazy.checkInvariants();
+}
+
+struct LazyCase {
+  geom::ToolShape shape;
+  glm::dvec3 axis;
+  std::size_t batch;
+  int brickZ;
+  Between between;
+};
+
+void PrintTo(const LazyCase& c, std::ostream* os) {
+  *os << "shape " << static_cast<int>(c.shape) << ", axis (" << c.axis.x << ", " << c.axis.y << ", "
+      << c.axis.z << "), batch " << c.batch << ", brick_z " << c.brickZ << ", between "
+      << static_cast<int>(c.between);
+}
+
+class LazyCrossings : public ::testing::TestWithParam<LazyCase> {};
+
+TEST_P(LazyCrossings, LeaveTheEagerStockToTheBit) {
+  const LazyCase& c = GetParam();
+  const geom::ToolPart part = testing::cutterPart(c.shape, 3.0);
+  const auto poses = testing::wavyRows(glm::normalize(c.axis), 40, 0.25);
+  Stock lazy(kBox, options(true, c.brickZ)), eager(kBox, options(false, c.brickZ));
+  cutRows(lazy, part, poses, c.batch, c.between);
+  cutRows(eager, part, poses, c.batch, c.between);
+  EXPECT_LT(eager.volume(), 0.97 * 12 * 12 * 8);  // it cut something
+  expectSameStock(lazy, eager);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ShapesBricksQueries, LazyCrossings,
+    ::testing::Values(LazyCase{geom::ToolShape::kBall, {0, 0, 1}, 16, -1, Between::kNothing},
+                      LazyCase{geom::ToolShape::kBall, {0, 0, 1}, 16, 0, Between::kNothing},
+                      LazyCase{geom::ToolShape::kBall, {0, 0, 1}, 4, 0, Between::kQueryLines},
+                      LazyCase{geom::ToolShape::kFlat, {0, 0, 1}, 16, 0, Between::kSingleSteps},
+                      LazyCase{geom::ToolShape::kBull, {0, 0, 1}, 7, -1, Between::kSingleSteps},
+                      LazyCase{geom::ToolShape::kDrill, {0, 0, 1}, 16, -1, Between::kQueryLines},
+                      LazyCase{geom::ToolShape::kBall, {0.3, -0.2, 1}, 16, -1, Between::kNothing},
+                      LazyCase{geom::ToolShape::kFlat, {-0.4, 0.1, 1}, 5, 0, Between::kSingleSteps},
+                      LazyCase{geom::ToolShape::kBull, {1, 0, 0.3}, 16, -1, Between::kNothing}),
+    [](const auto& p) { return "case" + std::to_string(p.index); });
+
+// Random 5-axis moves from every side (overhangs, splits, side maps) cut eagerly
+// between lazy batches: the slow path and the side maps settle what they reach.
+TEST(LazyCrossingsMixed, RandomMovesBetweenBatchesLeaveTheEagerStock) {
+  const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
+  const auto poses = testing::wavyRows({0, 0, 1}, 40, 0.25);
+  Stock lazy(kBox, options(true)), eager(kBox, options(false));
+  testing::RandomToolMoves movesA(7, kBox), movesB(7, kBox);
+  for (Stock* s : {&lazy, &eager}) {
+    testing::RandomToolMoves& moves = s == &lazy ? movesA : movesB;
+    for (int half = 0; half < 2; ++half) {
+      const std::size_t from = half * poses.size() / 2, to = (half + 1) * poses.size() / 2;
+      cutRows(*s, ball, std::vector(poses.begin() + from, poses.begin() + to), 8,
+              Between::kNothing);
+      for (int i = 0; i < 6; ++i) {
+        const testing::ToolMove m = moves.next();
+        s->cut(m.sweep, m.direction);
+      }
+    }
+  }
+  expectSameStock(lazy, eager);
+}
+
+// A batch the fast path refuses leaves the pending crossings as they were; the cut
+// made instead (with an overhang) settles the cells it reaches.
+TEST(LazyCrossingsMixed, ARefusedBatchKeepsWhatWasPending) {
+  const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
+  const geom::ToolPart drill = testing::cutterPart(geom::ToolShape::kDrill, 1.0);
+  const auto poses = testing::wavyRows({0, 0, 1}, 40, 0.25);
+  const std::vector<geom::ToolPose> side{{{-1.0, 6.0, 3.65}, {-1, 0, 0}},
+                                         {{4.0, 6.0, 3.65}, {-1, 0, 0}}};
+  Stock lazy(kBox, options(true)), eager(kBox, options(false));
+  for (Stock* s : {&lazy, &eager}) {
+    cutRows(*s, ball, poses, 16, Between::kNothing);
+    auto sweep = std::make_shared<const geom::SweptVolume>(
+        geom::SweptVolume::chainOfTranslations(drill, side));
+    EXPECT_FALSE(s->cutIfFast(std::shared_ptr<const geom::LineSolid>(sweep), {-1, 0, 0}, nullptr, 1)
+                     .has_value());
+    EXPECT_GT(s->cut(*sweep, {-1, 0, 0}).overhang_events, 0);
+  }
+  expectSameStock(lazy, eager);
+}
+
+// A clone holds the same pending cuts; each settles its own.
+TEST(LazyCrossingsMixed, AClonedStockSettlesLikeItsOriginal) {
+  const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
+  const auto poses = testing::wavyRows({0, 0, 1}, 40, 0.25);
+  Stock lazy(kBox, options(true, 0)), eager(kBox, options(false, 0));
+  const std::size_t half = poses.size() / 2;
+  cutRows(lazy, ball, std::vector(poses.begin(), poses.begin() + half), 16, Between::kNothing);
+  const std::unique_ptr<Stock> copy = lazy.clone();
+  cutRows(*copy, ball, std::vector(poses.begin() + half - 1, poses.end()), 16, Between::kNothing);
+  cutRows(eager, ball, std::vector(poses.begin(), poses.begin() + half), 16, Between::kNothing);
+  const auto halfway = testing::allIntervals(eager);
+  EXPECT_EQ(testing::differences(testing::allIntervals(lazy), halfway), 0);  // the original
+  cutRows(eager, ball, std::vector(poses.begin() + half - 1, poses.end()), 16, Between::kNothing);
+  expectSameStock(*copy, eager);
+}
+
+// Queries from several threads at once (the overhang area reads lines on the stock's
+// threads) settle once, and all read the settled stock.
+TEST(LazyCrossingsMixed, QueriesFromTwoThreadsReadTheSettledStock) {
+  const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
+  const auto poses = testing::wavyRows({0, 0, 1}, 40, 0.25);
+  Stock lazy(kBox, options(true, 0)), eager(kBox, options(false, 0));
+  cutRows(lazy, ball, poses, 16, Between::kNothing);
+  cutRows(eager, ball, poses, 16, Between::kNothing);
+  const GridSpec& g = lazy.grid();
+  std::vector<std::vector<double>> read(2);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 2; ++t)
+    threads.emplace_back([&, t] {
+      std::vector<geom::Interval> line;
+      for (int iz = 0; iz <= g.cubes[2]; ++iz)
+        for (int iy = t; iy <= g.cubes[1]; iy += 2) {
+          lazy.solidIntervals(0, iy, iz, line);
+          for (const geom::Interval& i : line) read[t].insert(read[t].end(), {i.lo, i.hi});
+        }
+    });
+  for (std::thread& t : threads) t.join();
+  std::vector<double> expected[2];
+  std::vector<geom::Interval> line;
+  for (int t = 0; t < 2; ++t)
+    for (int iz = 0; iz <= g.cubes[2]; ++iz)
+      for (int iy = t; iy <= g.cubes[1]; iy += 2) {
+        eager.solidIntervals(0, iy, iz, line);
+        for (const geom::Interval& i : line) expected[t].insert(expected[t].end(), {i.lo, i.hi});
+      }
+  EXPECT_EQ(read[0], expected[0]);
+  EXPECT_EQ(read[1], expected[1]);
+}
+
+// The lazy path is taken only where it may be: per-step volumes need every crossing.
+TEST(LazyCrossingsMixed, StepVolumesKeepTheCutsEager) {
+  const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
+  const auto poses = testing::wavyRows({0, 0, 1}, 40, 0.25);
+  StockOptions withVolumes = options(true);
+  withVolumes.step_volumes = true;
+  Stock a(kBox, withVolumes), b(kBox, options(false));
+  const auto chain = std::make_shared<const geom::SweptVolume>(
+      geom::SweptVolume::chainOfTranslations(ball, std::span(poses).first(12)));
+  const auto r = a.cutIfFast(std::shared_ptr<const geom::LineSolid>(chain), {0, 0, 1}, nullptr, 11);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_GT(r->removed_volume, 0.0);  // computed, so the crossings were
+  b.cutIfFast(*chain, {0, 0, 1}, nullptr, 11);
+  EXPECT_NEAR(r->removed_volume, 12.0 * 12 * 8 - b.volume(), 1e-9 * b.volume());
+}
+
+}  // namespace
+}  // namespace mdhd::mdh
