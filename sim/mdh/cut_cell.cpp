@@ -44,12 +44,12 @@ void normalize(Cell& cell) {
   if (cell.map->allEmpty()) {
     cell.state = CellState::kEmpty;
     cell.map.reset();
-    cell.pending = PendingCut{};
+    cell.pending.reset();
     cell.volume = 0.0;
   } else if (cell.map->allFull()) {
     cell.state = CellState::kSolid;
     cell.map.reset();
-    cell.pending = PendingCut{};
+    cell.pending.reset();
     cell.volume = cell.boxVolume();
   }
 }
@@ -60,10 +60,10 @@ bool fastCutCell(Cell& cell, const CutContext& ctx) {
   // z map, whose z lines (the probes') are its parent heights alone.
   const ThreeMap& m = *cell.map;
   if (ctx.lazySolid && !ctx.volumes && m.threeWay() && m.axis() == 2) {
-    const FastCut r = fastCutLazy(*cell.map, ctx.cache, ctx.reach, cell.pending);
+    if (!cell.pending) cell.pending = std::make_unique<PendingCuts>();
+    const FastCut r = fastCutLazy(*cell.map, ctx.cache, ctx.reach, ctx.lazySolid, *cell.pending);
     if (r == FastCut::kOverhang) return false;
     if (r == FastCut::kDone) {
-      cell.pending = PendingCut{ctx.lazySolid, cell.box.intersect(ctx.reach)};
       cell.volume = kStaleVolume;
       ctx.counters.touched = true;
     }

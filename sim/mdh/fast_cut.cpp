@@ -539,22 +539,28 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
 }
 
 FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                    const PendingCut& pending) {
+                    const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending) {
   thread_local Scratch s;
   const GridBox region = map.box().intersect(reach);
   if (region.empty()) return FastCut::kUnchanged;
   if (!cutColumns(map, cache, reach, region, s)) return FastCut::kOverhang;
+  // Generations are tags in NaNs' low bits: start again (all computed) long before they wrap.
+  if (pending.generation >= 0xffff0000u) settleCrossings(map, pending, cache.grid());
   const Columns cols(map);
   const std::size_t columns = static_cast<std::size_t>(map.columnsU()) * map.columnsV();
   s.counts.resize(columns);
   for (std::size_t i = 0; i < columns; ++i) s.counts[i] = cols.solidCount(cols.h[i]);
   columnsAfterCut(map, s);
-  // The pending cut's crossings first, on the heights it left, where this cut keeps them.
-  settleCrossings(map, pending, cache.grid(), s.newCountsMap.data());
+  // The pending cuts' crossings first, on the heights they left, where this cut keeps them.
+  advanceCrossings(map, pending, cache.grid(), s.newCountsMap.data());
+  const std::uint32_t generation = pending.generation + 1;
   s.movedColumns.clear();
   for (const ColumnChange& c : s.changes)
     s.movedColumns.push_back(static_cast<std::size_t>(c.iv) * cols.nu + c.iu);
-  relayoutCrossings(map, s.counts.data(), s.newCountsMap.data(), s.movedColumns);
+  relayoutCrossings(map, s.counts.data(), s.newCountsMap.data(), s.movedColumns,
+                    pendingCrossing(generation));
+  pending.cuts[pending.count++] = PendingCut{solid, region, generation};
+  pending.generation = generation;
   for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
   return FastCut::kDone;
 }

@@ -4,6 +4,8 @@
 // their one solid segment); rows of embedded heights through changed columns
 // are rebuilt, and in the other rows the tool's box reaches the crossings move
 // in place (a cut can move a crossing without changing any column).
+#include <memory>
+
 #include "sim/mdh/cell.h"
 #include "sim/mdh/grid.h"
 #include "sim/mdh/interval_cache.h"
@@ -21,10 +23,12 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
                 double* volumeDelta);
 
 // The same cut into a 3-way z map with its crossings left pending (lazy_crossings.h):
-// `pending` (the map's pending cut, or none) is settled first where this cut leaves
-// its crossings, and the caller makes this cut the pending one. kDone whenever the
-// cut reaches the map (whether a crossing moves is known only once it is settled).
+// the crossings the cut leaves in place are brought up to the cuts before it as
+// lazy_crossings.h's advanceCrossings says, the ones it makes are tagged with its
+// generation, and `solid` joins `pending`. kDone whenever the cut reaches the map
+// (whether a crossing moves is known only once it is settled); on kOverhang neither
+// map nor `pending` changed.
 FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                    const PendingCut& pending);
+                    const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending);
 
 }  // namespace mdhd::mdh

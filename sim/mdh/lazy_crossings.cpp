@@ -1,9 +1,11 @@
 #include "sim/mdh/lazy_crossings.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <cstdint>
-#include <span>
+#include <limits>
+#include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "sim/mdh/interval_cache.h"
@@ -13,36 +15,60 @@ namespace mdhd::mdh {
 
 namespace {
 
-// One row of a map's embedded heights as the settle walks it: the row's line
-// coordinates and the columns' solid counts around each edge.
-struct RowWalk {
-  const ThreeMap& m;
-  const int* counts;  // before the cut about to be made (or now)
-  const int* after;   // after it, or null
-  const GridBox& region;
-  int family, x, y;
+constexpr std::uint64_t kQuietNaN = 0x7ff8000000000000ull;
 
-  std::size_t at(int r, int e) const {
-    const int nu = m.columnsU();
+std::uint32_t generationOf(double tagged) {
+  return static_cast<std::uint32_t>(std::bit_cast<std::uint64_t>(tagged));
+}
+
+// One level whose crossing a resolve computes: row r, edge e, level k, index i in the
+// row, and from which of the ring's cuts on (their index) it still has to be cut.
+struct Item {
+  int r, e, k;
+  std::size_t i;
+  int from;
+};
+
+// The pending cuts as a resolve uses them: each one's reach in the map and line cache.
+struct Ring {
+  explicit Ring(const ThreeMap& map) : m(map) {}
+  const ThreeMap& m;
+  int count = 0;
+  std::uint32_t first = 0;  // the oldest's generation
+  GridBox region[PendingCuts::kMax]{};
+  GridBox any{};  // the smallest box holding every region
+  // Whether cut j reached edge e (an end in its reach) of row r at level k.
+  bool reached(int j, int x, int y, int r, int e, int k) const {
+    const GridBox& g = region[j];
+    const GridBox& box = m.box();
+    const int ex = box.lo[x] + e, ry = box.lo[y] + r, a = m.axis();
+    return ry >= g.lo[y] && ry <= g.hi[y] && ex + 1 >= g.lo[x] && ex <= g.hi[x] && k >= g.lo[a] &&
+           k <= g.hi[a];
+  }
+};
+
+// The items of one family: every straddled level that the coming cut keeps
+// (`after`, if given) and that is due: a number the newest cut reached, or a NaN
+// of a generation below `resolveBelow`.
+void collect(const Ring& ring, const int* counts, const int* after, int family,
+             std::uint32_t resolveBelow, std::vector<Item>& items) {
+  const ThreeMap& m = ring.m;
+  const GridBox& box = m.box();
+  const int u = m.uAxis(), v = m.vAxis(), nu = m.columnsU();
+  const int x = family == 0 ? u : v, y = family == 0 ? v : u;
+  const auto at = [&](int r, int e) {
     return family == 0 ? static_cast<std::size_t>(r) * nu + e
                        : static_cast<std::size_t>(e) * nu + r;
-  }
-  // Calls due(e, k, index into the row, fresh) for every level of row r whose
-  // crossing the settle computes: NaN ones (the pending cut made the edge straddle
-  // there: always) and the others on edges and levels the pending cut reached, but
-  // not those the cut about to be made takes away (`after`).
-  // Only rows and edges with an end in the reach hold any: the pending cut changed
+  };
+  // Only rows and edges with an end in some cut's reach can hold any: the cuts changed
   // columns there only, and reached no crossing elsewhere.
-  bool rowDue(int r) const {
-    const int ry = m.box().lo[y] + r;
-    return ry >= region.lo[y] && ry <= region.hi[y];
-  }
-  template <class Due>
-  void walk(int r, const std::vector<double>& row, Due due) const {
-    const GridBox& box = m.box();
-    const int a = m.axis();
-    const int eFirst = std::max(0, region.lo[x] - 1 - box.lo[x]);
-    const int eEnd = std::min(m.edgesInRow(family), region.hi[x] + 1 - box.lo[x]);
+  const int r0 = std::max(0, ring.any.lo[y] - box.lo[y]);
+  const int r1 = std::min(m.rowCount(family) - 1, ring.any.hi[y] - box.lo[y]);
+  const int eFirst = std::max(0, ring.any.lo[x] - 1 - box.lo[x]);
+  const int eEnd = std::min(m.edgesInRow(family), ring.any.hi[x] + 1 - box.lo[x]);
+  const int newest = ring.count - 1;
+  for (int r = r0; r <= r1; ++r) {
+    const std::vector<double>& row = m.row(family, r);
     std::size_t pos = 0;
     for (int e = 0; e < eFirst; ++e) {
       int first = 0, count = 0;
@@ -56,34 +82,59 @@ struct RowWalk {
       if (count == 0) continue;
       int keepFirst = first, keepCount = count;
       if (after != nullptr) m.straddleCounts(after[i0], after[i1], keepFirst, keepCount);
-      const int lo = std::max({first, keepFirst}),
+      const int lo = std::max(first, keepFirst),
                 hi = std::min(first + count, keepFirst + keepCount);
       for (int k = lo; k < hi; ++k) {
         const std::size_t i = pos + static_cast<std::size_t>(k - first);
-        const bool fresh = std::isnan(row[i]);
-        if (fresh || (k >= region.lo[a] && k <= region.hi[a])) due(e, k, i, fresh);
+        const double c = row[i];
+        if (std::isnan(c)) {
+          const std::uint32_t g = generationOf(c);
+          if (g >= resolveBelow) continue;
+          if (g < ring.first || g - ring.first >= static_cast<std::uint32_t>(ring.count))
+            throw std::logic_error("mdh: a crossing is pending for a cut the cell no longer holds");
+          items.push_back({r, e, k, i, static_cast<int>(g - ring.first)});
+        } else if (ring.reached(newest, x, y, r, e, k)) {
+          items.push_back({r, e, k, i, newest});
+        }
       }
       pos += static_cast<std::size_t>(count);
     }
   }
-};
+}
 
-}  // namespace
-
-void settleCrossings(ThreeMap& map, const PendingCut& pending, const GridSpec& grid,
-                     const int* countsAfter) {
-  if (!pending || !map.threeWay()) return;
-  // One store per thread, reused: a settle allocates nothing once it has grown.
-  thread_local LineStore store;
+// Computes the due crossings of `map` (see collect) through the cuts they wait for.
+void resolve(ThreeMap& map, const PendingCuts& pending, const GridSpec& grid, const int* after,
+             std::uint32_t resolveBelow) {
+  if (pending.count == 0 || !map.threeWay()) return;
   const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
-  IntervalCache cache(grid, *pending.solid, &store, (1u << u) | (1u << v));
-  cache.setShared(false);
   const GridBox& box = map.box();
-  const GridBox region = box.intersect(pending.reach);
+  Ring ring(map);
+  ring.count = pending.count;
+  ring.first = pending.cuts[0].generation;
+  ring.any = GridBox{};
+  for (int j = 0; j < ring.count; ++j) {
+    ring.region[j] = box.intersect(pending.cuts[j].reach);
+    for (int ax = 0; ax < 3; ++ax) {
+      ring.any.lo[ax] =
+          j == 0 ? ring.region[j].lo[ax] : std::min(ring.any.lo[ax], ring.region[j].lo[ax]);
+      ring.any.hi[ax] =
+          j == 0 ? ring.region[j].hi[ax] : std::max(ring.any.hi[ax], ring.region[j].hi[ax]);
+    }
+  }
+  // One store per cut and thread, reused: a resolve allocates nothing once they have grown.
+  thread_local LineStore stores[PendingCuts::kMax];
+  std::optional<IntervalCache> caches[PendingCuts::kMax];
+  for (int j = 0; j < ring.count; ++j) {
+    caches[j].emplace(grid, *pending.cuts[j].solid, &stores[j], (1u << u) | (1u << v));
+    caches[j]->setShared(false);
+  }
   const bool up = map.direction().sign > 0;
   const std::size_t columns = static_cast<std::size_t>(map.columnsU()) * map.columnsV();
+  const int levels = box.points(a);
   thread_local std::vector<int> counts;
-  thread_local std::vector<std::uint8_t> marks;
+  thread_local std::vector<Item> items;
+  thread_local std::vector<std::uint32_t> marks;  // (row, level) -> stamp of the last ask
+  thread_local std::uint32_t stamp = 0;
   thread_local std::vector<int> lineU, lineV;
   counts.resize(columns);
   const double* h = map.heightData();
@@ -91,65 +142,95 @@ void settleCrossings(ThreeMap& map, const PendingCut& pending, const GridSpec& g
   for (int family = 0; family < 2; ++family) {
     const int x = family == 0 ? u : v, y = family == 0 ? v : u;
     const bool levelIsU = axisU(x) == a;
-    const RowWalk rows{map, counts.data(), countsAfter, region, family, x, y};
-    // The lines the rows will ask for, filled together where the solid answers many
-    // lines for less than one by one (IntervalCache::fillLines): the same answers.
-    if (cache.linesPay(x)) {
+    items.clear();
+    collect(ring, counts.data(), after, family, resolveBelow, items);
+    if (items.empty()) continue;
+    const auto applies = [&](const Item& it, int j) {
+      return j == it.from || ring.reached(j, x, y, it.r, it.e, it.k);
+    };
+    // Each cut's lines the items will ask for, filled together where the solid answers
+    // many lines for less than one by one (IntervalCache::fillLines): the same answers.
+    const std::size_t cells = static_cast<std::size_t>(map.rowCount(family)) * levels;
+    if (marks.size() < cells) marks.assign(cells, 0), stamp = 0;
+    for (int j = 0; j < ring.count; ++j) {
+      if (!caches[j]->linesPay(x)) continue;
+      if (++stamp == 0) std::fill(marks.begin(), marks.end(), 0), stamp = 1;
       lineU.clear();
       lineV.clear();
-      marks.assign(static_cast<std::size_t>(box.points(a)), 0);
-      for (int r = 0; r < map.rowCount(family); ++r) {
-        if (!rows.rowDue(r)) continue;
-        const int fixed = box.lo[y] + r;
-        int kmin = box.points(a), kmax = -1;
-        rows.walk(r, map.row(family, r), [&](int, int k, std::size_t, bool) {
-          const int l = k - box.lo[a];
-          marks[l] = 1;
-          kmin = std::min(kmin, l), kmax = std::max(kmax, l);
-        });
-        for (int l = kmin; l <= kmax; ++l) {
-          if (!marks[l]) continue;
-          marks[l] = 0;
-          lineU.push_back(levelIsU ? box.lo[a] + l : fixed);
-          lineV.push_back(levelIsU ? fixed : box.lo[a] + l);
-        }
+      for (const Item& it : items) {
+        if (it.from > j || !applies(it, j)) continue;
+        std::uint32_t& mark = marks[static_cast<std::size_t>(it.r) * levels + (it.k - box.lo[a])];
+        if (mark == stamp) continue;
+        mark = stamp;
+        const int fixed = box.lo[y] + it.r;
+        lineU.push_back(levelIsU ? it.k : fixed);
+        lineV.push_back(levelIsU ? fixed : it.k);
       }
-      if (lineU.size() > 1) cache.fillLines(x, lineU, lineV);
+      if (lineU.size() > 1) caches[j]->fillLines(x, lineU, lineV);
     }
-    for (int r = 0; r < map.rowCount(family); ++r) {
-      if (!rows.rowDue(r)) continue;
-      std::vector<double>& row = map.row(family, r);
-      const int fixed = box.lo[y] + r;
-      // Up a wall the levels of the solid's prism band share one line: the same
-      // question is answered once (as fast_cut.cpp's edgeCrossings does).
-      const Span* lastTool = nullptr;
-      std::size_t lastSize = 0;
-      double lastOld = 0.0, lastValue = 0.0;
-      unsigned lastStates = ~0u;
-      int lastEdge = -1;
-      rows.walk(r, row, [&](int e, int k, std::size_t i, bool fresh) {
-        const auto tool = levelIsU ? cache.line(x, k, fixed) : cache.line(x, fixed, k);
-        const double oc = row[i];
-        if (!fresh && tool.empty()) return;  // an edge the solid misses keeps its crossing
-        const double h0 = map.rowHeight(family, r, e), h1 = map.rowHeight(family, r, e + 1);
-        const bool n0 = up ? k <= h0 : k >= h0, n1 = up ? k <= h1 : k >= h1;
+    // Up a wall the levels of a solid's prism band share one line: the same question
+    // is answered once per cut (as fast_cut.cpp's edgeCrossings does).
+    struct Last {
+      const Span* tool = nullptr;
+      std::size_t size = 0;
+      double old = 0.0, value = 0.0;
+      unsigned states = ~0u;
+      int r = -1, e = -1;
+    } last[PendingCuts::kMax];
+    for (const Item& it : items) {
+      std::vector<double>& row = map.row(family, it.r);
+      const int fixed = box.lo[y] + it.r;
+      const double h0 = map.rowHeight(family, it.r, it.e),
+                   h1 = map.rowHeight(family, it.r, it.e + 1);
+      const bool n0 = up ? it.k <= h0 : it.k >= h0, n1 = up ? it.k <= h1 : it.k >= h1;
+      double c = row[it.i];
+      for (int j = it.from; j < ring.count; ++j) {
+        if (!applies(it, j)) continue;
+        const bool fresh = j == it.from && std::isnan(c);
+        const auto tool =
+            levelIsU ? caches[j]->line(x, it.k, fixed) : caches[j]->line(x, fixed, it.k);
+        if (!fresh && tool.empty()) continue;  // an edge the solid misses keeps its crossing
         const bool o0 = fresh || n0, o1 = fresh || n1;
         const unsigned states = o0 | o1 << 1 | n0 << 2 | n1 << 3;
-        const bool sameOld = oc == lastOld || (fresh && std::isnan(lastOld));
-        if (!(e == lastEdge && tool.data() == lastTool && tool.size() == lastSize && sameOld &&
-              states == lastStates)) {
-          lastValue = edgeCrossingAfterCut(o0, o1, oc, n0, n1, box.lo[x] + e, tool);
-          lastTool = tool.data(), lastSize = tool.size(), lastOld = oc, lastStates = states;
-          lastEdge = e;
+        Last& l = last[j];
+        const bool sameOld = c == l.old || (fresh && std::isnan(l.old));
+        if (!(it.e == l.e && it.r == l.r && tool.data() == l.tool && tool.size() == l.size &&
+              sameOld && states == l.states)) {
+          l.value = edgeCrossingAfterCut(o0, o1, c, n0, n1, box.lo[x] + it.e, tool);
+          l.tool = tool.data(), l.size = tool.size(), l.old = c, l.states = states;
+          l.r = it.r, l.e = it.e;
         }
-        row[i] = lastValue;
-      });
+        c = l.value;
+      }
+      row[it.i] = c;
     }
   }
 }
 
+}  // namespace
+
+double pendingCrossing(std::uint32_t generation) {
+  return std::bit_cast<double>(kQuietNaN | generation);
+}
+
+void advanceCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid,
+                      const int* countsAfter) {
+  if (pending.count == 0) return;
+  const bool full = pending.count == PendingCuts::kMax;
+  resolve(map, pending, grid, countsAfter, full ? pending.cuts[0].generation + 1 : 0);
+  if (!full) return;
+  std::rotate(pending.cuts.begin(), pending.cuts.begin() + 1, pending.cuts.end());
+  pending.cuts[PendingCuts::kMax - 1] = PendingCut{};
+  --pending.count;
+}
+
+void settleCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid) {
+  resolve(map, pending, grid, nullptr, std::numeric_limits<std::uint32_t>::max());
+  pending = PendingCuts{};
+}
+
 void relayoutCrossings(ThreeMap& map, const int* before, const int* after,
-                       std::span<const std::size_t> moved) {
+                       std::span<const std::size_t> moved, double fresh) {
   thread_local std::vector<double> dst;
   thread_local std::vector<std::uint8_t> rowMoved;
   const int nu = map.columnsU();
@@ -172,7 +253,7 @@ void relayoutCrossings(ThreeMap& map, const int* before, const int* after,
         map.straddleCounts(before[at(r, e)], before[at(r, e + 1)], of, oc);
         map.straddleCounts(after[at(r, e)], after[at(r, e + 1)], nf, nc);
         for (int k = nf; k < nf + nc; ++k)
-          dst.push_back(k >= of && k < of + oc ? src[pos + (k - of)] : std::nan(""));
+          dst.push_back(k >= of && k < of + oc ? src[pos + (k - of)] : fresh);
         pos += static_cast<std::size_t>(oc);
       }
       // Reuse the row's storage unless it is too small or far too large (memory is
@@ -187,8 +268,8 @@ void relayoutCrossings(ThreeMap& map, const int* before, const int* after,
 
 void settlePending(Cell& cell, const GridSpec& grid) {
   if (!cell.pending) return;
-  if (cell.map) settleCrossings(*cell.map, cell.pending, grid);
-  cell.pending = PendingCut{};
+  if (cell.map) settleCrossings(*cell.map, *cell.pending, grid);
+  cell.pending.reset();
 }
 
 }  // namespace mdhd::mdh

@@ -1,18 +1,24 @@
 #pragma once
 // Lazy crossings. A 3-axis batch cut into a z map (fastCutLazy) changes its columns
 // at once and leaves the crossings across them (the embedded heights on the x and y
-// grid lines) to be computed when needed: by the cell's next cut, only for the
-// crossings that cut leaves in place, or by settleCrossings before anyone reads the
-// map. Most crossings a raster pass makes lie on the wall beside its groove, which the
-// next pass cuts away; computed lazily, those never are (docs/engine.md, "Lazy
-// crossings").
+// grid lines) to be computed when needed: most crossings a raster pass makes lie on
+// the wall beside its groove, which the next pass cuts away, and those never are
+// (docs/engine.md, "Lazy crossings").
 //
-// While a cut is pending, an embedded height holds the crossing the edge had before
-// that cut, or NaN where it had none (both columns solid at that level). The crossing
-// after the cut is edgeCrossingAfterCut of that, the columns as they are now and the
-// pending solid's line: the same inputs, and so the same bits, as the cut would have
-// used had it computed the crossing itself.
+// A cell keeps its last few lazy cuts (PendingCuts, oldest first, generations g0,
+// g0+1, ..., gn). An embedded height is then either
+//   - a number: the crossing after every cut but the newest, which still has to be
+//     applied where it reached; or
+//   - a NaN tagged with the generation g of the cut that made the edge straddle that
+//     level (both columns were solid there before it): cuts g .. gn have to be applied.
+// Applying cut j is edgeCrossingAfterCut of the crossing so far, the columns' states
+// (a straddle keeps its solid side as long as it lasts, so the states now are the
+// states then), and cut j's line: the same inputs, and so the same bits, as an eager
+// cut would have used. A crossing is computed when its oldest cut leaves the ring, or
+// when someone reads the map (settle); a level that stops straddling before that is
+// never computed at all.
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 #include "sim/mdh/cell.h"
@@ -21,20 +27,27 @@
 
 namespace mdhd::mdh {
 
-// Computes the pending cut's crossings in `map` (a 3-way z map). With `countsAfter`
-// (the solid vertex count of every column after the cut about to be made, row-major),
-// only the levels that cut leaves straddled are computed: the others are about to go.
-void settleCrossings(ThreeMap& map, const PendingCut& pending, const GridSpec& grid,
-                     const int* countsAfter = nullptr);
+// The NaN an embedded height holds while the cut of `generation` is pending there.
+double pendingCrossing(std::uint32_t generation);
+
+// Before a lazy cut: brings the numbers up to the newest pending cut and, when the ring
+// is full, computes the crossings its oldest cut left (and drops that cut), both only at
+// levels the coming cut leaves straddled (`countsAfter`: the solid vertex count of every
+// column after it, row-major); the others are about to go.
+void advanceCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid,
+                      const int* countsAfter);
+
+// Computes every pending crossing of `map` and empties `pending`.
+void settleCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid);
 
 // Lays the embedded rows out for columns whose solid counts go from `before` to
 // `after` (row-major; `moved`: the indices of the columns whose height moved, the
 // only ones whose count can differ): a level straddled before and after keeps its
-// value, a level straddled only after gets NaN (pending), one straddled only before goes.
+// value, a level straddled only after gets `fresh`, one straddled only before goes.
 void relayoutCrossings(ThreeMap& map, const int* before, const int* after,
-                       std::span<const std::size_t> moved);
+                       std::span<const std::size_t> moved, double fresh);
 
-// Settles a leaf's pending cut, if any, and forgets it.
+// Settles a leaf's pending cuts, if any, and forgets them.
 void settlePending(Cell& cell, const GridSpec& grid);
 
 }  // namespace mdhd::mdh

@@ -12,7 +12,8 @@ void copyCell(const Cell& from, Cell& to) {
   to.splitAxis = from.splitAxis;
   to.splitAt = from.splitAt;
   if (from.map) to.map = std::make_unique<ThreeMap>(*from.map);
-  to.pending = from.pending;  // the solid is shared, never changed
+  // The solids are shared: they never change.
+  to.pending = from.pending ? std::make_unique<PendingCuts>(*from.pending) : nullptr;
   for (int i = 0; i < 2; ++i) {
     if (!from.child[i]) continue;
     to.child[i] = std::make_unique<Cell>();
