@@ -4,7 +4,6 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -121,88 +120,84 @@ void resolve(ThreeMap& map, const PendingCuts& pending, const GridSpec& grid, co
           j == 0 ? ring.region[j].hi[ax] : std::max(ring.any.hi[ax], ring.region[j].hi[ax]);
     }
   }
-  // One store per cut and thread, reused: a resolve allocates nothing once they have grown.
-  thread_local LineStore stores[PendingCuts::kMax];
-  std::optional<IntervalCache> caches[PendingCuts::kMax];
-  for (int j = 0; j < ring.count; ++j) {
-    caches[j].emplace(grid, *pending.cuts[j].solid, &stores[j], (1u << u) | (1u << v));
-    caches[j]->setShared(false);
-  }
   const bool up = map.direction().sign > 0;
   const std::size_t columns = static_cast<std::size_t>(map.columnsU()) * map.columnsV();
   const int levels = box.points(a);
   thread_local std::vector<int> counts;
-  thread_local std::vector<Item> items;
+  thread_local std::vector<Item> items[2];
   thread_local std::vector<std::uint32_t> marks;  // (row, level) -> stamp of the last ask
   thread_local std::uint32_t stamp = 0;
   thread_local std::vector<int> lineU, lineV;
   counts.resize(columns);
   const double* h = map.heightData();
   for (std::size_t i = 0; i < columns; ++i) counts[i] = map.solidCount(h[i]);
+  bool any = false;
   for (int family = 0; family < 2; ++family) {
-    const int x = family == 0 ? u : v, y = family == 0 ? v : u;
-    const bool levelIsU = axisU(x) == a;
-    items.clear();
-    collect(ring, counts.data(), after, family, resolveBelow, items);
-    if (items.empty()) continue;
-    const auto applies = [&](const Item& it, int j) {
-      return j == it.from || ring.reached(j, x, y, it.r, it.e, it.k);
-    };
-    // Each cut's lines the items will ask for, filled together where the solid answers
-    // many lines for less than one by one (IntervalCache::fillLines): the same answers.
-    const std::size_t cells = static_cast<std::size_t>(map.rowCount(family)) * levels;
-    if (marks.size() < cells) marks.assign(cells, 0), stamp = 0;
-    for (int j = 0; j < ring.count; ++j) {
-      if (!caches[j]->linesPay(x)) continue;
-      if (++stamp == 0) std::fill(marks.begin(), marks.end(), 0), stamp = 1;
-      lineU.clear();
-      lineV.clear();
-      for (const Item& it : items) {
-        if (it.from > j || !applies(it, j)) continue;
-        std::uint32_t& mark = marks[static_cast<std::size_t>(it.r) * levels + (it.k - box.lo[a])];
-        if (mark == stamp) continue;
-        mark = stamp;
-        const int fixed = box.lo[y] + it.r;
-        lineU.push_back(levelIsU ? it.k : fixed);
-        lineV.push_back(levelIsU ? fixed : it.k);
+    items[family].clear();
+    collect(ring, counts.data(), after, family, resolveBelow, items[family]);
+    any = any || !items[family].empty();
+  }
+  if (!any) return;
+  // Cut by cut, oldest first (each item's cuts in their order), so that one line
+  // cache (and one store per thread, reused: nothing allocated once it has grown) is
+  // alive at a time.
+  thread_local LineStore store;
+  for (int j = 0; j < ring.count; ++j) {
+    IntervalCache cache(grid, *pending.cuts[j].solid, &store, (1u << u) | (1u << v));
+    cache.setShared(false);
+    for (int family = 0; family < 2; ++family) {
+      const int x = family == 0 ? u : v, y = family == 0 ? v : u;
+      const bool levelIsU = axisU(x) == a;
+      const auto applies = [&](const Item& it) {
+        return it.from == j || (it.from < j && ring.reached(j, x, y, it.r, it.e, it.k));
+      };
+      // The lines the items will ask for, filled together where the solid answers
+      // many lines for less than one by one (IntervalCache::fillLines): the same answers.
+      if (cache.linesPay(x)) {
+        const std::size_t cells = static_cast<std::size_t>(map.rowCount(family)) * levels;
+        if (marks.size() < cells) marks.assign(cells, 0), stamp = 0;
+        if (++stamp == 0) std::fill(marks.begin(), marks.end(), 0), stamp = 1;
+        lineU.clear();
+        lineV.clear();
+        for (const Item& it : items[family]) {
+          if (!applies(it)) continue;
+          std::uint32_t& mark = marks[static_cast<std::size_t>(it.r) * levels + (it.k - box.lo[a])];
+          if (mark == stamp) continue;
+          mark = stamp;
+          const int fixed = box.lo[y] + it.r;
+          lineU.push_back(levelIsU ? it.k : fixed);
+          lineV.push_back(levelIsU ? fixed : it.k);
+        }
+        if (lineU.size() > 1) cache.fillLines(x, lineU, lineV);
       }
-      if (lineU.size() > 1) caches[j]->fillLines(x, lineU, lineV);
-    }
-    // Up a wall the levels of a solid's prism band share one line: the same question
-    // is answered once per cut (as fast_cut.cpp's edgeCrossings does).
-    struct Last {
-      const Span* tool = nullptr;
-      std::size_t size = 0;
-      double old = 0.0, value = 0.0;
-      unsigned states = ~0u;
-      int r = -1, e = -1;
-    } last[PendingCuts::kMax];
-    for (const Item& it : items) {
-      std::vector<double>& row = map.row(family, it.r);
-      const int fixed = box.lo[y] + it.r;
-      const double h0 = map.rowHeight(family, it.r, it.e),
-                   h1 = map.rowHeight(family, it.r, it.e + 1);
-      const bool n0 = up ? it.k <= h0 : it.k >= h0, n1 = up ? it.k <= h1 : it.k >= h1;
-      double c = row[it.i];
-      for (int j = it.from; j < ring.count; ++j) {
-        if (!applies(it, j)) continue;
-        const bool fresh = j == it.from && std::isnan(c);
-        const auto tool =
-            levelIsU ? caches[j]->line(x, it.k, fixed) : caches[j]->line(x, fixed, it.k);
+      // Up a wall the levels of a solid's prism band share one line: the same question
+      // is answered once (as fast_cut.cpp's edgeCrossings does).
+      const Span* lastTool = nullptr;
+      std::size_t lastSize = 0;
+      double lastOld = 0.0, lastValue = 0.0;
+      unsigned lastStates = ~0u;
+      int lastRow = -1, lastEdge = -1;
+      for (const Item& it : items[family]) {
+        if (!applies(it)) continue;
+        double& c = map.row(family, it.r)[it.i];
+        const bool fresh = it.from == j && std::isnan(c);
+        const int fixed = box.lo[y] + it.r;
+        const auto tool = levelIsU ? cache.line(x, it.k, fixed) : cache.line(x, fixed, it.k);
         if (!fresh && tool.empty()) continue;  // an edge the solid misses keeps its crossing
+        const double h0 = map.rowHeight(family, it.r, it.e);
+        const double h1 = map.rowHeight(family, it.r, it.e + 1);
+        const bool n0 = up ? it.k <= h0 : it.k >= h0, n1 = up ? it.k <= h1 : it.k >= h1;
         const bool o0 = fresh || n0, o1 = fresh || n1;
         const unsigned states = o0 | o1 << 1 | n0 << 2 | n1 << 3;
-        Last& l = last[j];
-        const bool sameOld = c == l.old || (fresh && std::isnan(l.old));
-        if (!(it.e == l.e && it.r == l.r && tool.data() == l.tool && tool.size() == l.size &&
-              sameOld && states == l.states)) {
-          l.value = edgeCrossingAfterCut(o0, o1, c, n0, n1, box.lo[x] + it.e, tool);
-          l.tool = tool.data(), l.size = tool.size(), l.old = c, l.states = states;
-          l.r = it.r, l.e = it.e;
+        const bool sameOld = c == lastOld || (fresh && std::isnan(lastOld));
+        if (!(it.e == lastEdge && it.r == lastRow && tool.data() == lastTool &&
+              tool.size() == lastSize && sameOld && states == lastStates)) {
+          lastValue = edgeCrossingAfterCut(o0, o1, c, n0, n1, box.lo[x] + it.e, tool);
+          lastTool = tool.data(), lastSize = tool.size(), lastOld = c, lastStates = states;
+          lastRow = it.r, lastEdge = it.e;
         }
-        c = l.value;
+        c = lastValue;
       }
-      row[it.i] = c;
     }
   }
 }
