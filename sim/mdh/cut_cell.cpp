@@ -299,6 +299,56 @@ void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
 
 }  // namespace
 
+LazyPlan planLazyCut(const Cell& brick, const CutContext& ctx) {
+  LazyPlan plan;
+  if (brick.state == CellState::kEmpty || brick.box.intersect(ctx.reach).empty()) return plan;
+  plan.kind = LazyPlan::Kind::kOther;
+  if (brick.state == CellState::kInner || !ctx.lazySolid || ctx.volumes || !ctx.threeWay)
+    return plan;
+  const ThreeMap* map = brick.map.get();
+  if (brick.state == CellState::kSolid) {
+    // As cutLeaf: most solid cells under the tool's box lose nothing.
+    if (!toolRemovesSomeVertex(brick.box.intersect(ctx.reach), ctx.cache)) {
+      plan.kind = LazyPlan::Kind::kNothing;
+      return plan;
+    }
+    const Direction d = guessDirection(ctx.toolDirection);
+    if (d.axis != 2) return plan;
+    plan.map = std::make_unique<ThreeMap>(brick.box, d, ctx.threeWay);
+    map = plan.map.get();
+  } else if (!map->threeWay() || map->axis() != 2) {
+    return plan;
+  }
+  switch (lazyColumns(*map, ctx.cache, ctx.reach, plan.changes)) {
+    case FastCut::kUnchanged:
+      plan.kind = LazyPlan::Kind::kNothing;
+      break;
+    case FastCut::kDone:
+      plan.kind = LazyPlan::Kind::kCut;
+      break;
+    case FastCut::kOverhang:
+      plan.kind = LazyPlan::Kind::kRefuse;
+      break;
+  }
+  return plan;
+}
+
+void cutPlanned(Cell& brick, LazyPlan& plan, const CutContext& ctx) {
+  if (plan.kind != LazyPlan::Kind::kCut) return;
+  if (plan.map) {
+    brick.map = std::move(plan.map);
+    brick.state = CellState::kPartial;
+  }
+  if (!brick.pending) brick.pending = std::make_unique<PendingCuts>();
+  cutLazily(*brick.map, ctx.cache, ctx.reach, plan.changes, ctx.lazySolid, *brick.pending);
+  brick.volume = kStaleVolume;
+  ctx.counters.touched = true;
+  normalize(brick);
+#ifndef NDEBUG
+  checkCell(brick);
+#endif
+}
+
 void cutCell(Cell& cell, const CutContext& ctx) {
   if (cell.state == CellState::kEmpty || cell.box.intersect(ctx.reach).empty()) return;
   if (cell.state == CellState::kInner) {

@@ -14,6 +14,7 @@
 #include "sim/geometry/fresh_region.h"
 #include "sim/mdh/cell.h"
 #include "sim/mdh/cut_counters.h"
+#include "sim/mdh/fast_cut.h"
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/split_rules.h"
 
@@ -41,6 +42,23 @@ struct CutContext {
 };
 
 void cutCell(Cell& cell, const CutContext& ctx);
+
+// A lazy batch (ctx.lazySolid) in two halves, so that a batch the fast path cannot
+// take changes no cell and needs no copies to undo (Stock::cutIfFast): planLazyCut
+// finds a brick's new column heights without changing it, cutPlanned makes the cut.
+struct LazyPlan {
+  enum class Kind {
+    kNothing,  // the cut changes nothing here
+    kCut,      // changes (and map, for a solid brick) hold the cut
+    kRefuse,   // the brick needs the slow path: so would the batch
+    kOther,    // not a leaf with a z map (or solid, one will hold it): cut it with cutCell
+  };
+  Kind kind = Kind::kNothing;
+  std::unique_ptr<ThreeMap> map;  // a solid brick's first map
+  std::vector<ColumnChange> changes;
+};
+LazyPlan planLazyCut(const Cell& brick, const CutContext& ctx);
+void cutPlanned(Cell& brick, LazyPlan& plan, const CutContext& ctx);
 
 // Throws std::logic_error naming the first broken invariant of the subtree.
 void checkCell(const Cell& cell);

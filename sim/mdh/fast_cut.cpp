@@ -14,11 +14,6 @@ namespace mdhd::mdh {
 
 namespace {
 
-struct ColumnChange {
-  int iu, iv;
-  double height;
-};
-
 // Per-thread buffers, so a step allocates nothing once they have grown.
 struct Scratch {
   std::vector<ColumnChange> changes;
@@ -538,14 +533,24 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   return FastCut::kDone;
 }
 
-FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                    const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending) {
+FastCut lazyColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+                    std::vector<ColumnChange>& changes) {
   thread_local Scratch s;
   const GridBox region = map.box().intersect(reach);
   if (region.empty()) return FastCut::kUnchanged;
   if (!cutColumns(map, cache, reach, region, s)) return FastCut::kOverhang;
+  changes.assign(s.changes.begin(), s.changes.end());
+  return FastCut::kDone;
+}
+
+void cutLazily(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+               std::span<const ColumnChange> changes,
+               const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending) {
+  thread_local Scratch s;
+  const GridBox region = map.box().intersect(reach);
   // Generations are tags in NaNs' low bits: start again (all computed) long before they wrap.
   if (pending.generation >= 0xffff0000u) settleCrossings(map, pending, cache.grid());
+  s.changes.assign(changes.begin(), changes.end());
   const Columns cols(map);
   const std::size_t columns = static_cast<std::size_t>(map.columnsU()) * map.columnsV();
   s.counts.resize(columns);
@@ -562,7 +567,14 @@ FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& re
   pending.cuts[pending.count++] = PendingCut{solid, region, generation};
   pending.generation = generation;
   for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
-  return FastCut::kDone;
+}
+
+FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+                    const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending) {
+  thread_local std::vector<ColumnChange> changes;
+  const FastCut r = lazyColumns(map, cache, reach, changes);
+  if (r == FastCut::kDone) cutLazily(map, cache, reach, changes, solid, pending);
+  return r;
 }
 
 }  // namespace mdhd::mdh

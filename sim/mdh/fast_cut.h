@@ -5,6 +5,8 @@
 // are rebuilt, and in the other rows the tool's box reaches the crossings move
 // in place (a cut can move a crossing without changing any column).
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "sim/mdh/cell.h"
 #include "sim/mdh/grid.h"
@@ -14,6 +16,12 @@
 namespace mdhd::mdh {
 
 enum class FastCut { kUnchanged, kDone, kOverhang };
+
+// A column's new height (iu, iv: its place in the map).
+struct ColumnChange {
+  int iu, iv;
+  double height;
+};
 
 // On kDone the map is updated and *volumeDelta (grid units^3, unless null:
 // the edge integrals are then skipped) is its change; on kOverhang the map is
@@ -30,5 +38,15 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
 // map nor `pending` changed.
 FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
                     const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending);
+
+// fastCutLazy in two halves, for a caller that must know that every cell takes the
+// cut before it changes any (Stock::cutIfFast, without copies to undo): the columns'
+// new heights (kUnchanged: the reach misses the map; `changes` filled on kDone), then
+// the cut itself from them.
+FastCut lazyColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+                    std::vector<ColumnChange>& changes);
+void cutLazily(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
+               std::span<const ColumnChange> changes,
+               const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending);
 
 }  // namespace mdhd::mdh

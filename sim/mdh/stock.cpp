@@ -145,11 +145,28 @@ std::optional<CutResult> Stock::cutIfFastWith(const geom::LineSolid& solid,
     step_ += steps;
     return CutResult{};
   }
+  ++step_;
+  const bool lazy = lazySolid != nullptr;
+  if (lazy) {
+    // Planned first, cut after: a batch that some brick cannot take on the fast path
+    // is refused before any brick changes, with no copies to undo.
+    CutCounters step;
+    switch (cutLazyBatch(cache, tool_direction, fresh, lazySolid, step)) {
+      case LazyBatch::kTaken:
+        pending_.store(true, std::memory_order_release);
+        step_ += steps - 1;
+        totals_.add(step);
+        return result(step);
+      case LazyBatch::kRefused:
+        --step_;
+        return std::nullopt;
+      case LazyBatch::kOther:
+        break;  // a brick needs more than a z map: cut with undo copies as below
+    }
+  }
   // Every slow cut counts an overhang event at the leaf it starts from (cut_cell.cpp),
   // and vertex drops follow only from slow cuts: no event, no slow path.
   BrickUndo undo;
-  ++step_;
-  const bool lazy = lazySolid != nullptr;
   const CutCounters step = cutBricks(cache, tool_direction, fresh, &undo, std::move(lazySolid));
   if (step.overhangEvents > 0 || !step.dropped.empty()) {
     for (std::size_t i = 0; i < undo.bricks.size(); ++i)
@@ -204,12 +221,12 @@ void Stock::ensureSettled() const {
   if (pending_.load(std::memory_order_acquire)) const_cast<Stock*>(this)->settleBricks(1);
 }
 
-CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direction,
-                             const geom::FreshRegion* fresh, BrickUndo* undo,
-                             std::shared_ptr<const geom::LineSolid> lazySolid) {
+void Stock::reachedBricks(const IntervalCache& cache, const geom::FreshRegion* fresh,
+                          std::vector<int>& items, std::vector<GridBox>& reach,
+                          std::vector<std::size_t>& order) const {
   const GridBox& t = cache.touched();
-  std::vector<int> items;
-  std::vector<GridBox> reach;
+  items.clear();
+  reach.clear();
   std::array<int, 3> first{}, last{};
   for (int a = 0; a < 3; ++a) {
     first[a] = std::max(0, (t.lo[a] - 1) / brickSize_[a]);
@@ -228,11 +245,80 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
   // Largest reach first, so two threads do not end a step with one big brick left
   // to one of them (the order is the data's, so the sums below do not depend on
   // the thread count).
-  std::vector<std::size_t> order(items.size());
+  order.resize(items.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) {
     return reach[l].pointCount() > reach[r].pointCount();
   });
+}
+
+Stock::LazyBatch Stock::cutLazyBatch(IntervalCache& cache, const glm::dvec3& tool_direction,
+                                     const geom::FreshRegion* fresh,
+                                     const std::shared_ptr<const geom::LineSolid>& lazySolid,
+                                     CutCounters& step) {
+  std::vector<int> items;
+  std::vector<GridBox> reach;
+  std::vector<std::size_t> order;
+  reachedBricks(cache, fresh, items, reach, order);
+  std::vector<CutCounters> counters(items.size());
+  std::vector<LazyPlan> plans(items.size());
+  const auto context = [&](std::size_t i) {
+    return CutContext{grid_,
+                      cache,
+                      reach[i],
+                      fresh,
+                      options_.ruleset,
+                      options_.step_volumes,
+                      options_.three_way,
+                      tool_direction,
+                      toolRadius_ / grid_.h,
+                      options_.seed,
+                      step_,
+                      counters[i],
+                      lazySolid};
+  };
+  const std::function<void(std::size_t)> plan = [&](std::size_t k) {
+    const std::size_t i = order[k];
+    plans[i] = planLazyCut(roots_[items[i]], context(i));
+  };
+  const std::function<void(std::size_t)> cut = [&](std::size_t k) {
+    const std::size_t i = order[k];
+    cutPlanned(roots_[items[i]], plans[i], context(i));
+  };
+  runOnBricks(cache, items.size(), plan);
+  bool refused = false;
+  for (const LazyPlan& p : plans) {
+    if (p.kind == LazyPlan::Kind::kOther) return LazyBatch::kOther;
+    refused = refused || p.kind == LazyPlan::Kind::kRefuse;
+  }
+  if (refused) return LazyBatch::kRefused;
+  runOnBricks(cache, items.size(), cut);
+  for (const CutCounters& c : counters) step.add(c);  // fixed order: identical sums
+  return LazyBatch::kTaken;
+}
+
+void Stock::runOnBricks(IntervalCache& cache, std::size_t count,
+                        const std::function<void(std::size_t)>& work) {
+  // Waking a helper costs microseconds: small steps stay on this thread.
+  constexpr std::int64_t kParallelPoints = 32768;
+  const int workers = cache.touched().pointCount() < kParallelPoints ? 1 : threads_;
+  const bool parallel = workers > 1 && count > 1;
+  cache.setShared(parallel);
+  if (parallel) {
+    if (!pool_) pool_ = std::make_unique<WorkerPool>(threads_);
+    pool_->run(count, workers, work);
+  } else {
+    for (std::size_t i = 0; i < count; ++i) work(i);
+  }
+}
+
+CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direction,
+                             const geom::FreshRegion* fresh, BrickUndo* undo,
+                             std::shared_ptr<const geom::LineSolid> lazySolid) {
+  std::vector<int> items;
+  std::vector<GridBox> reach;
+  std::vector<std::size_t> order;
+  reachedBricks(cache, fresh, items, reach, order);
   std::vector<CutCounters> counters(items.size());
   if (undo != nullptr) {
     undo->bricks = items;
@@ -256,17 +342,7 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
                          lazySolid};
     cutCell(roots_[items[i]], ctx);
   };
-  // Waking a helper costs microseconds: small steps stay on this thread.
-  constexpr std::int64_t kParallelPoints = 32768;
-  const int workers = t.pointCount() < kParallelPoints ? 1 : threads_;
-  const bool parallel = workers > 1 && items.size() > 1;
-  cache.setShared(parallel);
-  if (parallel) {
-    if (!pool_) pool_ = std::make_unique<WorkerPool>(threads_);
-    pool_->run(items.size(), workers, work);
-  } else {
-    for (std::size_t i = 0; i < items.size(); ++i) work(i);
-  }
+  runOnBricks(cache, items.size(), work);
   CutCounters step;
   for (const CutCounters& c : counters) step.add(c);  // fixed order: identical sums
   return step;

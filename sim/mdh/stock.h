@@ -169,6 +169,20 @@ class Stock {
   CutCounters cutBricks(IntervalCache& cache, const glm::dvec3& toolDirection,
                         const geom::FreshRegion* fresh, BrickUndo* undo = nullptr,
                         std::shared_ptr<const geom::LineSolid> lazySolid = nullptr);
+  // The bricks a cut reaches (not empty, not outside the fresh region), their reach,
+  // and the order to hand them to the workers in (largest reach first).
+  void reachedBricks(const IntervalCache& cache, const geom::FreshRegion* fresh,
+                     std::vector<int>& items, std::vector<GridBox>& reach,
+                     std::vector<std::size_t>& order) const;
+  // work(0 .. count-1) on the workers when the cut is large enough to pay for them.
+  void runOnBricks(IntervalCache& cache, std::size_t count,
+                   const std::function<void(std::size_t)>& work);
+  // A lazy batch planned on every brick first (cut_cell.h's LazyPlan), then cut.
+  enum class LazyBatch { kTaken, kRefused, kOther };
+  LazyBatch cutLazyBatch(IntervalCache& cache, const glm::dvec3& toolDirection,
+                         const geom::FreshRegion* fresh,
+                         const std::shared_ptr<const geom::LineSolid>& lazySolid,
+                         CutCounters& step);
   std::optional<CutResult> cutIfFastWith(const geom::LineSolid& solid,
                                          std::shared_ptr<const geom::LineSolid> lazySolid,
                                          const glm::dvec3& toolDirection,

@@ -167,6 +167,30 @@ TEST(LazyCrossingsMixed, ARefusedBatchKeepsWhatWasPending) {
   expectSameStock(lazy, eager);
 }
 
+// A vertical tool buried deeper than its flutes would leave material above them in a
+// z map: the lazy batch is refused when planned, before any brick changes (no undo
+// copies), exactly as the eager batch is refused after its undo.
+TEST(LazyCrossingsMixed, ABatchRefusedWhenPlannedChangesNothing) {
+  const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
+  const geom::ToolPart small = testing::cutterPart(geom::ToolShape::kFlat, 1.0);  // 4 mm flutes
+  const auto poses = testing::wavyRows({0, 0, 1}, 40, 0.25);
+  const std::vector<geom::ToolPose> deep{{{6.0, 6.3, 1.0}, {0, 0, 1}},
+                                         {{7.0, 6.3, 1.0}, {0, 0, 1}}};
+  Stock lazy(kBox, options(true)), eager(kBox, options(false));
+  const auto sweep = std::make_shared<const geom::SweptVolume>(
+      geom::SweptVolume::chainOfTranslations(small, deep));
+  for (Stock* s : {&lazy, &eager}) {
+    cutRows(*s, ball, poses, 16, Between::kNothing);
+    const std::uint64_t steps = s->steps();
+    EXPECT_FALSE(
+        s->cutIfFast(std::shared_ptr<const geom::LineSolid>(sweep), {0, 0, 1}, nullptr, 1));
+    EXPECT_EQ(s->steps(), steps);
+  }
+  EXPECT_EQ(testing::differences(testing::allIntervals(lazy), testing::allIntervals(eager)), 0);
+  for (Stock* s : {&lazy, &eager}) EXPECT_GT(s->cut(*sweep, {0, 0, 1}).overhang_events, 0);
+  expectSameStock(lazy, eager);
+}
+
 // A clone holds the same pending cuts; each settles its own.
 TEST(LazyCrossingsMixed, AClonedStockSettlesLikeItsOriginal) {
   const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
