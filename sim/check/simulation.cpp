@@ -527,7 +527,10 @@ void Simulation::closeToolRemoval(int next) {
   if (removal_touched_) {
     stock_->settle();  // on the stock's threads, before volume() reads the maps
     const double v = stock_->volume();
-    toolUse(stats_, removal_tool_).removed_volume_mm3 += removal_start_ - v;
+    // A lazy batch counts as touched wherever it reaches a cut map (mdh::Stock::cutIfFast):
+    // a tool is credited only with what the volume says it removed.
+    if (removal_start_ - v > 0.0)
+      toolUse(stats_, removal_tool_).removed_volume_mm3 += removal_start_ - v;
     removal_start_ = v;
   }
   removal_tool_ = next;
@@ -541,7 +544,7 @@ Report Simulation::snapshot(std::int64_t blocks) const {
   stats.blocks = blocks;
   stats.final_volume_mm3 = stock_->volume();
   stats.removed_volume_mm3 = stats.stock_volume_mm3 - stats.final_volume_mm3;
-  if (removal_touched_)
+  if (removal_touched_ && removal_start_ - stats.final_volume_mm3 > 0.0)
     toolUse(stats, removal_tool_).removed_volume_mm3 += removal_start_ - stats.final_volume_mm3;
   report.mdh = stock_->stats();
   OverhangStats overhang = overhang_;

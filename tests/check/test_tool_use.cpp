@@ -22,7 +22,8 @@ TEST(ToolUse, EachToolIsCreditedWithWhatItRemoved) {
       rig::run(std::move(s),
                "T1 M6\nG43 H1\nS1000 M3\n"
                "G0 X5 Y10 Z5\nG1 Z-2 F500\nG1 X35\nG0 Z5\n"            // 6 mm slot, 2 deep
-               "T3 M6\nG43 H3\nG0 X5 Y10 Z5\nG1 Z-1\nG0 Z5\n"          // in the air of the slot
+               "T3 M6\nG43 H3\nG0 X5 Y10 Z5\nG1 Z-1\n"  // in the air of the slot,
+               "G1 X15\nG1 X25\nG1 X30\nG0 Z5\n"             // along it (a batch of moves)
                "T2 M6\nG43 H2\nG0 X5 Y30 Z5\nG1 Z-3\nG1 X35\nG0 Z5\n"  // 4 mm, 3 deep
                "M30\n");
   const double first = 2 * (pi * 9 + 30 * 6), second = 3 * (pi * 4 + 30 * 4);
@@ -34,7 +35,8 @@ TEST(ToolUse, EachToolIsCreditedWithWhatItRemoved) {
   EXPECT_NEAR(t2->removed_volume_mm3, second, 0.02 * second);
   EXPECT_GT(t1->cutting_time_s, 0.0);
   EXPECT_GT(t2->cutting_time_s, 0.0);
-  // Tool 3 only went down into the empty slot: it cut nothing.
+  // Tool 3 only went down into the empty slot and along it (a batch of steps that
+  // reaches the cut maps): it cut nothing.
   EXPECT_EQ(useOf(r, 3), nullptr);
   EXPECT_NEAR(t1->removed_volume_mm3 + t2->removed_volume_mm3, r.stats.removed_volume_mm3, 1e-6);
 }
