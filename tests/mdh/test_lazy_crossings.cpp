@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <ostream>
+#include <random>
 #include <thread>
 #include <vector>
 
@@ -14,7 +15,11 @@
 
 #include "sim/geometry/swept_volume.h"
 #include "sim/geometry/tool_fresh_region.h"
+#include "sim/mdh/fast_cut.h"
+#include "sim/mdh/lazy_crossings.h"
 #include "sim/mdh/stock.h"
+#include "tests/mdh/analytic_solids.h"
+#include "tests/mdh/random_cuts.h"
 #include "tests/mdh/random_tool_moves.h"
 #include "tests/mdh/stock_lines.h"
 #include "tests/mdh/wavy_rows.h"
@@ -23,6 +28,15 @@ namespace mdhd::mdh {
 namespace {
 
 const geom::Aabb& kBox = testing::kWavyStock;
+
+void expectSameRows(const ThreeMap& a, const ThreeMap& b) {
+  for (int iv = 0; iv < a.columnsV(); ++iv)
+    for (int iu = 0; iu < a.columnsU(); ++iu)
+      ASSERT_EQ(a.height(iu, iv), b.height(iu, iv)) << "column " << iu << "," << iv;
+  for (int family = 0; family < 2; ++family)
+    for (int r = 0; r < a.rowCount(family); ++r)
+      ASSERT_EQ(a.row(family, r), b.row(family, r)) << "family " << family << " row " << r;
+}
 
 StockOptions options(bool lazy, int brickZ = -1) {
   StockOptions o = testing::wavyOptions();
@@ -83,6 +97,44 @@ void expectSameStock(const Stock& lazy, const Stock& eager) {
   EXPECT_EQ(a.directions, b.directions);
   EXPECT_EQ(a.overhangEvents, b.overhangEvents);
   lazy.checkInvariants();
+}
+
+// One map cut lazily and eagerly by the same random upright cuts (the ring fills and
+// drops its oldest cut again and again), settled now and then, with the generations
+// started just below where they are reset (their tags must not wrap): the same map.
+TEST(LazyCrossingsMap, EqualsTheEagerMapThroughEvictionsAndAGenerationReset) {
+  GridSpec grid;
+  grid.h = 0.1;
+  grid.cubes = {24, 20, 22};
+  const GridBox box{{0, 0, 0}, {24, 20, 22}};
+  ThreeMap eager(box, Direction{2, 1}, true), lazy(box, Direction{2, 1}, true);
+  PendingCuts pending;
+  pending.generation = 0xffff0000u - 7;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int cuts = 0;
+  for (int step = 0; step < 80; ++step) {
+    const glm::dvec3 tip{2.4 * unit(rng), 2.0 * unit(rng), 2.2 - 0.9 * unit(rng)};
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(0.05 * unit(rng), 0.0, 1.0));
+    const double r = 0.2 + 0.4 * unit(rng);
+    const std::shared_ptr<const geom::LineSolid> tool = unit(rng) < 0.6
+                                                            ? testing::ballMill(tip, axis, r, 6.0)
+                                                            : testing::flatMill(tip, axis, r, 6.0);
+    const IntervalCache cache(grid, *tool);
+    const FastCut e = fastCut(eager, cache, cache.touched(), nullptr);
+    const FastCut l = fastCutLazy(lazy, cache, cache.touched(), tool, pending);
+    ASSERT_EQ(e == FastCut::kOverhang, l == FastCut::kOverhang) << "step " << step;
+    cuts += e != FastCut::kOverhang;
+    if (step % 25 == 24) {
+      settleCrossings(lazy, pending, grid);
+      ASSERT_NO_FATAL_FAILURE(expectSameRows(lazy, eager)) << "step " << step;
+      pending.generation = 0xffff0000u - 2;  // and once more across the reset
+    }
+  }
+  EXPECT_GT(cuts, 40);
+  settleCrossings(lazy, pending, grid);
+  expectSameRows(lazy, eager);
+  EXPECT_EQ(lazy.volume(), eager.volume());
 }
 
 struct LazyCase {
