@@ -263,19 +263,7 @@ Stock::LazyBatch Stock::cutLazyBatch(IntervalCache& cache, const glm::dvec3& too
   std::vector<CutCounters> counters(items.size());
   std::vector<LazyPlan> plans(items.size());
   const auto context = [&](std::size_t i) {
-    return CutContext{grid_,
-                      cache,
-                      reach[i],
-                      fresh,
-                      options_.ruleset,
-                      options_.step_volumes,
-                      options_.three_way,
-                      tool_direction,
-                      toolRadius_ / grid_.h,
-                      options_.seed,
-                      step_,
-                      counters[i],
-                      lazySolid};
+    return brickContext(cache, reach[i], fresh, tool_direction, counters[i], lazySolid);
   };
   const std::function<void(std::size_t)> plan = [&](std::size_t k) {
     const std::size_t i = order[k];
@@ -295,6 +283,25 @@ Stock::LazyBatch Stock::cutLazyBatch(IntervalCache& cache, const glm::dvec3& too
   runOnBricks(cache, items.size(), cut);
   for (const CutCounters& c : counters) step.add(c);  // fixed order: identical sums
   return LazyBatch::kTaken;
+}
+
+CutContext Stock::brickContext(const IntervalCache& cache, const GridBox& reach,
+                               const geom::FreshRegion* fresh, const glm::dvec3& toolDirection,
+                               CutCounters& counters,
+                               const std::shared_ptr<const geom::LineSolid>& lazySolid) const {
+  return CutContext{grid_,
+                    cache,
+                    reach,
+                    fresh,
+                    options_.ruleset,
+                    options_.step_volumes,
+                    options_.three_way,
+                    toolDirection,
+                    toolRadius_ / grid_.h,
+                    options_.seed,
+                    step_,
+                    counters,
+                    lazySolid};
 }
 
 void Stock::runOnBricks(IntervalCache& cache, std::size_t count,
@@ -327,20 +334,8 @@ CutCounters Stock::cutBricks(IntervalCache& cache, const glm::dvec3& tool_direct
   const std::function<void(std::size_t)> work = [&](std::size_t k) {
     const std::size_t i = order[k];
     if (undo != nullptr) copyCell(roots_[items[i]], undo->before[i]);
-    const CutContext ctx{grid_,
-                         cache,
-                         reach[i],
-                         fresh,
-                         options_.ruleset,
-                         options_.step_volumes,
-                         options_.three_way,
-                         tool_direction,
-                         toolRadius_ / grid_.h,
-                         options_.seed,
-                         step_,
-                         counters[i],
-                         lazySolid};
-    cutCell(roots_[items[i]], ctx);
+    cutCell(roots_[items[i]],
+            brickContext(cache, reach[i], fresh, tool_direction, counters[i], lazySolid));
   };
   runOnBricks(cache, items.size(), work);
   CutCounters step;

@@ -27,6 +27,7 @@
 namespace mdhd::mdh {
 
 class IntervalCache;
+struct CutContext;
 
 struct StockOptions {
   double density = 10.0;  // grid points per mm
@@ -174,6 +175,11 @@ class Stock {
   void reachedBricks(const IntervalCache& cache, const geom::FreshRegion* fresh,
                      std::vector<int>& items, std::vector<GridBox>& reach,
                      std::vector<std::size_t>& order) const;
+  // What cut_cell.h needs to cut one brick (its reach, counters and the lazy solid).
+  CutContext brickContext(const IntervalCache& cache, const GridBox& reach,
+                          const geom::FreshRegion* fresh, const glm::dvec3& toolDirection,
+                          CutCounters& counters,
+                          const std::shared_ptr<const geom::LineSolid>& lazySolid) const;
   // work(0 .. count-1) on the workers when the cut is large enough to pay for them.
   void runOnBricks(IntervalCache& cache, std::size_t count,
                    const std::function<void(std::size_t)>& work);
