@@ -566,7 +566,11 @@ void cutLazily(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
                     pendingCrossing(generation));
   pending.cuts[pending.count++] = PendingCut{solid, region, generation};
   pending.generation = generation;
-  for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
+  for (std::size_t k = 0; k < s.changes.size(); ++k) {
+    const ColumnChange& c = s.changes[k];
+    const std::size_t i = s.movedColumns[k];
+    map.setHeight(c.iu, c.iv, c.height, s.counts[i], s.newCountsMap[i]);
+  }
 }
 
 FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,

@@ -248,18 +248,19 @@ void IntervalCache::rowSpans(int axis, int iv, std::span<const int> ius, std::ve
     mmEnds.resize(us.size());
     solid_.rowIntervals(axis, us, grid_.toMm(axisV(axis), v), mm, mmEnds);
   }
-  // Cleaned as store() cleans a slot, line by line, into `out`.
-  std::size_t from = 0, k = 0;
+  // Cleaned as store() cleans a slot, line by line, into `out` (sized once: cleaning
+  // never adds spans).
+  out.resize(at.empty() ? 0 : mm.size());
+  std::size_t from = 0, k = 0, n = 0;
   for (std::size_t j = 0; j < ius.size(); ++j) {
     if (k < at.size() && at[k] == j) {
-      const std::size_t first = out.size();
       const std::span<const geom::Interval> line(mm.data() + from, mmEnds[k] - from);
-      out.resize(first + line.size());
-      out.resize(first + cleanSpans(grid_, axis, line, out.data() + first));
+      n += cleanSpans(grid_, axis, line, out.data() + n);
       from = mmEnds[k++];
     }
-    ends[j] = out.size();
+    ends[j] = n;
   }
+  out.resize(n);
 }
 
 void IntervalCache::fillLines(int axis, std::span<const int> ius, std::span<const int> ivs) const {

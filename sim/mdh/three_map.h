@@ -69,6 +69,13 @@ class ThreeMap {
     emptyColumns_ += (solidCount(h) == 0) - (solidCount(slot) == 0);
     slot = h;
   }
+  // The same when the caller has the solid counts before and after (a cut does).
+  void setHeight(int iu, int iv, double h, int countBefore, int countAfter) {
+    const int n = levels();
+    fullColumns_ += (countAfter == n) - (countBefore == n);
+    emptyColumns_ += (countAfter == 0) - (countBefore == 0);
+    heights_[iv * nu_ + iu] = h;
+  }
   double emptyHeight() const { return dir_.sign > 0 ? -kInf : kInf; }
   double fullHeight() const { return dir_.sign > 0 ? box_.hi[dir_.axis] : box_.lo[dir_.axis]; }
 
