@@ -557,7 +557,7 @@ void cutLazily(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   for (std::size_t i = 0; i < columns; ++i) s.counts[i] = cols.solidCount(cols.h[i]);
   columnsAfterCut(map, s);
   // The pending cuts' crossings first, on the heights they left, where this cut keeps them.
-  advanceCrossings(map, pending, cache.grid(), s.newCountsMap.data());
+  advanceCrossings(map, pending, cache.grid(), s.counts.data(), s.newCountsMap.data());
   const std::uint32_t generation = pending.generation + 1;
   s.movedColumns.clear();
   for (const ColumnChange& c : s.changes)

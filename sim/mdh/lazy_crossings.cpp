@@ -102,8 +102,9 @@ void collect(const Ring& ring, const int* counts, const int* after, int family,
 }
 
 // Computes the due crossings of `map` (see collect) through the cuts they wait for.
-void resolve(ThreeMap& map, const PendingCuts& pending, const GridSpec& grid, const int* after,
-             std::uint32_t resolveBelow) {
+// `now`: the columns' solid counts (computed here when null).
+void resolve(ThreeMap& map, const PendingCuts& pending, const GridSpec& grid, const int* now,
+             const int* after, std::uint32_t resolveBelow) {
   if (pending.count == 0 || !map.threeWay()) return;
   const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
   const GridBox& box = map.box();
@@ -128,13 +129,16 @@ void resolve(ThreeMap& map, const PendingCuts& pending, const GridSpec& grid, co
   thread_local std::vector<std::uint32_t> marks;  // (row, level) -> stamp of the last ask
   thread_local std::uint32_t stamp = 0;
   thread_local std::vector<int> lineU, lineV;
-  counts.resize(columns);
-  const double* h = map.heightData();
-  for (std::size_t i = 0; i < columns; ++i) counts[i] = map.solidCount(h[i]);
+  if (now == nullptr) {
+    counts.resize(columns);
+    const double* h = map.heightData();
+    for (std::size_t i = 0; i < columns; ++i) counts[i] = map.solidCount(h[i]);
+    now = counts.data();
+  }
   bool any = false;
   for (int family = 0; family < 2; ++family) {
     items[family].clear();
-    collect(ring, counts.data(), after, family, resolveBelow, items[family]);
+    collect(ring, now, after, family, resolveBelow, items[family]);
     any = any || !items[family].empty();
   }
   if (!any) return;
@@ -209,10 +213,10 @@ double pendingCrossing(std::uint32_t generation) {
 }
 
 void advanceCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid,
-                      const int* countsAfter) {
+                      const int* countsNow, const int* countsAfter) {
   if (pending.count == 0) return;
   const bool full = pending.count == PendingCuts::kMax;
-  resolve(map, pending, grid, countsAfter, full ? pending.cuts[0].generation + 1 : 0);
+  resolve(map, pending, grid, countsNow, countsAfter, full ? pending.cuts[0].generation + 1 : 0);
   if (!full) return;
   std::rotate(pending.cuts.begin(), pending.cuts.begin() + 1, pending.cuts.end());
   pending.cuts[PendingCuts::kMax - 1] = PendingCut{};
@@ -220,43 +224,69 @@ void advanceCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid,
 }
 
 void settleCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid) {
-  resolve(map, pending, grid, nullptr, std::numeric_limits<std::uint32_t>::max());
+  resolve(map, pending, grid, nullptr, nullptr, std::numeric_limits<std::uint32_t>::max());
   pending = PendingCuts{};
 }
 
 void relayoutCrossings(ThreeMap& map, const int* before, const int* after,
                        std::span<const std::size_t> moved, double fresh) {
-  thread_local std::vector<double> dst;
-  thread_local std::vector<std::uint8_t> rowMoved;
+  thread_local std::vector<double> mid;
+  thread_local std::vector<int> lowest, highest;  // per row: its first and last moved column
   const int nu = map.columnsU();
   for (int family = 0; family < 2; ++family) {
     const auto at = [&](int r, int e) {
       return family == 0 ? static_cast<std::size_t>(r) * nu + e
                          : static_cast<std::size_t>(e) * nu + r;
     };
-    const int n = map.edgesInRow(family) + 1;
-    rowMoved.assign(static_cast<std::size_t>(map.rowCount(family)), 0);
-    for (std::size_t i : moved)
-      if (before[i] != after[i]) rowMoved[family == 0 ? i / nu : i % nu] = 1;
-    for (int r = 0; r < map.rowCount(family); ++r) {
-      if (!rowMoved[r]) continue;
+    const int rows = map.rowCount(family), edges = map.edgesInRow(family);
+    lowest.assign(static_cast<std::size_t>(rows), edges + 1);
+    highest.assign(static_cast<std::size_t>(rows), -1);
+    for (std::size_t i : moved) {
+      if (before[i] == after[i]) continue;
+      const int r = static_cast<int>(family == 0 ? i / nu : i % nu);
+      const int e = static_cast<int>(family == 0 ? i % nu : i / nu);
+      lowest[r] = std::min(lowest[r], e);
+      highest[r] = std::max(highest[r], e);
+    }
+    for (int r = 0; r < rows; ++r) {
+      if (highest[r] < 0) continue;
+      // Only the edges beside a moved column change their layout: the rows before and
+      // after them keep their values, in one block each.
+      const int e0 = std::max(0, lowest[r] - 1), e1 = std::min(edges, highest[r] + 1);
       std::vector<double>& src = map.row(family, r);
-      dst.clear();
       std::size_t pos = 0;
-      for (int e = 0; e + 1 < n; ++e) {
+      for (int e = 0; e < e0; ++e) {
+        int of = 0, oc = 0;
+        map.straddleCounts(before[at(r, e)], before[at(r, e + 1)], of, oc);
+        pos += static_cast<std::size_t>(oc);
+      }
+      const std::size_t head = pos;
+      mid.clear();
+      for (int e = e0; e < e1; ++e) {
         int of = 0, oc = 0, nf = 0, nc = 0;
         map.straddleCounts(before[at(r, e)], before[at(r, e + 1)], of, oc);
         map.straddleCounts(after[at(r, e)], after[at(r, e + 1)], nf, nc);
         for (int k = nf; k < nf + nc; ++k)
-          dst.push_back(k >= of && k < of + oc ? src[pos + (k - of)] : fresh);
+          mid.push_back(k >= of && k < of + oc ? src[pos + (k - of)] : fresh);
         pos += static_cast<std::size_t>(oc);
       }
+      const std::size_t tail = src.size() - pos, size = head + mid.size() + tail;
       // Reuse the row's storage unless it is too small or far too large (memory is
       // counted by capacity), as fast_cut.cpp's rebuildRow does.
-      if (dst.size() > src.capacity() || src.capacity() > dst.size() + dst.size() / 4 + 4)
-        src = std::vector<double>(dst.begin(), dst.end());
-      else
-        src.assign(dst.begin(), dst.end());
+      if (size > src.capacity() || src.capacity() > size + size / 4 + 4) {
+        std::vector<double> row;
+        row.reserve(size);
+        row.insert(row.end(), src.begin(), src.begin() + static_cast<std::ptrdiff_t>(head));
+        row.insert(row.end(), mid.begin(), mid.end());
+        row.insert(row.end(), src.begin() + static_cast<std::ptrdiff_t>(pos), src.end());
+        src = std::move(row);
+      } else if (mid.size() == pos - head) {
+        std::copy(mid.begin(), mid.end(), src.begin() + static_cast<std::ptrdiff_t>(head));
+      } else {
+        src.erase(src.begin() + static_cast<std::ptrdiff_t>(head),
+                  src.begin() + static_cast<std::ptrdiff_t>(pos));
+        src.insert(src.begin() + static_cast<std::ptrdiff_t>(head), mid.begin(), mid.end());
+      }
     }
   }
 }

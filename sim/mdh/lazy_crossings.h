@@ -32,10 +32,10 @@ double pendingCrossing(std::uint32_t generation);
 
 // Before a lazy cut: brings the numbers up to the newest pending cut and, when the ring
 // is full, computes the crossings its oldest cut left (and drops that cut), both only at
-// levels the coming cut leaves straddled (`countsAfter`: the solid vertex count of every
-// column after it, row-major); the others are about to go.
+// levels the coming cut leaves straddled (`countsNow`, `countsAfter`: the solid vertex
+// count of every column before and after it, row-major); the others are about to go.
 void advanceCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid,
-                      const int* countsAfter);
+                      const int* countsNow, const int* countsAfter);
 
 // Computes every pending crossing of `map` and empties `pending`.
 void settleCrossings(ThreeMap& map, PendingCuts& pending, const GridSpec& grid);
