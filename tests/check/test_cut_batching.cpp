@@ -59,8 +59,9 @@ std::string randomProgram(std::uint32_t seed) {
 }
 
 Report runWith(const std::string& program, int batch, int brickZ, double chainTolerance = 0.0,
-               double* machinedArea = nullptr) {
+               double* machinedArea = nullptr, bool lazyCrossings = true) {
   rig::Rig s;
+  s.options.lazy_crossings = lazyCrossings;
   s.options.density = 5;
   s.options.batch_steps = batch;
   s.options.brick_z = brickZ;
@@ -119,6 +120,30 @@ TEST_P(CutBatching, RandomProgramsGiveTheReportOfOneByOne) {
   for (int brickZ : {-1, 0}) {
     SCOPED_TRACE(brickZ == -1 ? "cubic bricks" : "bricks as tall as the stock");
     expectSameReport(program, brickZ);
+  }
+}
+
+// Lazy crossings (mdh::StockOptions::lazy_crossings) are the engine's business too: the
+// batches leave the stock, and so the report, of the eager cuts to the bit (collisions,
+// depths, times, volumes, overhang area, cells, embedded samples).
+TEST_P(CutBatching, LazyCrossingsGiveTheReportOfEagerOnes) {
+  const std::string program = randomProgram(GetParam());
+  for (int brickZ : {-1, 0}) {
+    SCOPED_TRACE(brickZ == -1 ? "cubic bricks" : "bricks as tall as the stock");
+    const Report lazy = runWith(program, 16, brickZ, -1.0);
+    const Report eager = runWith(program, 16, brickZ, -1.0, nullptr, false);
+    expectSameCollisions(lazy, eager, 0.0);
+    ASSERT_EQ(lazy.stats.tools.size(), eager.stats.tools.size());
+    for (std::size_t i = 0; i < eager.stats.tools.size(); ++i) {
+      EXPECT_EQ(lazy.stats.tools[i].tool, eager.stats.tools[i].tool);
+      EXPECT_EQ(lazy.stats.tools[i].cutting_time_s, eager.stats.tools[i].cutting_time_s);
+      EXPECT_EQ(lazy.stats.tools[i].removed_volume_mm3, eager.stats.tools[i].removed_volume_mm3);
+    }
+    EXPECT_EQ(lazy.stats.final_volume_mm3, eager.stats.final_volume_mm3);
+    EXPECT_EQ(lazy.overhang.area_mm2, eager.overhang.area_mm2);
+    EXPECT_EQ(lazy.overhang.events, eager.overhang.events);
+    EXPECT_EQ(lazy.mdh.leaves, eager.mdh.leaves);
+    EXPECT_EQ(lazy.mdh.embeddedSamples, eager.mdh.embeddedSamples);
   }
 }
 
