@@ -117,7 +117,8 @@ class Stock {
   // The same with the solid shared: the cells may keep it for crossings they compute
   // later (StockOptions::lazy_crossings), which every query below settles first and
   // settle() computes at once, on the stock's threads. CutResult::touched is then true
-  // whenever the cut reaches a partial z map.
+  // whenever the cut reaches a partial z map. Where every brick reached is a z map (or
+  // solid), the batch is planned on all of them before any is cut: no copies for an undo.
   std::optional<CutResult> cutIfFast(std::shared_ptr<const geom::LineSolid> solid,
                                      const glm::dvec3& tool_direction,
                                      const geom::FreshRegion* fresh, std::uint64_t steps);
