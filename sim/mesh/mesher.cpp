@@ -741,7 +741,7 @@ MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& op
 }
 
 MeshStats meshStock(const mdh::Stock& stock, MeshSink& sink, const MeshOptions& options) {
-  const StockView view(stock);
+  const StockView view(stock, options.threads);
   return meshStock(view, sink, options);
 }
 

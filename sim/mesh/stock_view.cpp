@@ -1,10 +1,13 @@
 // The adapter: everything the mesher reads from sim/mdh goes through here.
 #include "sim/mesh/stock_view.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "sim/mdh/stock.h"
 
@@ -16,7 +19,7 @@ constexpr std::int64_t kMaxBuckets = std::int64_t{1} << 20;
 
 }  // namespace
 
-StockView::StockView(const mdh::Stock& stock) {
+StockView::StockView(const mdh::Stock& stock, int threads) {
   const mdh::GridSpec& g = stock.grid();
   origin_ = g.origin;
   spacing_ = g.h;
@@ -30,13 +33,24 @@ StockView::StockView(const mdh::Stock& stock) {
       leaf.info.axis = lv.map->axis();
       leaf.info.sign = lv.map->direction().sign;
       leaf.map = lv.map;
-      if (lv.map->threeWay()) indexRows(leaf);
-      brokenLeaves_ += leaf.rowsBroken ? 1 : 0;
     } else {
       leaf.info.kind = lv.state == mdh::CellState::kEmpty ? LeafKind::kEmpty : LeafKind::kSolid;
     }
     leaves_.push_back(std::move(leaf));
   });
+  // The rows' offsets, leaf by leaf: a fifth of a fine mesh's time on one thread.
+  const auto index = [&](int first, int step) {
+    for (int i = first; i < leafCount(); i += step) {
+      Leaf& leaf = leaves_[static_cast<std::size_t>(i)];
+      if (leaf.map != nullptr && leaf.map->threeWay()) indexRows(leaf);
+    }
+  };
+  std::vector<std::thread> helpers;
+  const int workers = std::clamp(threads, 1, 64);
+  for (int t = 1; t < workers; ++t) helpers.emplace_back(index, t, workers);
+  index(0, workers);
+  for (std::thread& t : helpers) t.join();
+  for (const Leaf& leaf : leaves_) brokenLeaves_ += leaf.rowsBroken ? 1 : 0;
   auto bucketCount = [&] {
     std::int64_t n = 1;
     for (int a = 0; a < 3; ++a) n *= cubes_[a] / bucketSize_ + 1;
@@ -71,6 +85,16 @@ StockView::~StockView() = default;
 
 void StockView::indexRows(Leaf& leaf) {
   const mdh::ThreeMap& m = *leaf.map;
+  // Each column's solid count once (a straddle from two heights counts both again).
+  thread_local std::vector<int> counts;
+  counts.resize(static_cast<std::size_t>(m.columnsU()) * m.columnsV());
+  for (int iv = 0; iv < m.columnsV(); ++iv)
+    for (int iu = 0; iu < m.columnsU(); ++iu)
+      counts[static_cast<std::size_t>(iv) * m.columnsU() + iu] = m.solidCount(m.height(iu, iv));
+  const auto countAt = [&](int f, int r, int e) {
+    return f == 0 ? counts[static_cast<std::size_t>(r) * m.columnsU() + e]
+                  : counts[static_cast<std::size_t>(e) * m.columnsU() + r];
+  };
   for (int f = 0; f < 2; ++f) {
     const int edges = m.edgesInRow(f);
     leaf.rowStart[f].assign(static_cast<std::size_t>(m.rowCount(f)) * (edges + 1), 0);
@@ -80,7 +104,7 @@ void StockView::indexRows(Leaf& leaf) {
       for (int e = 0; e < edges; ++e) {
         start[e] = pos;
         int first = 0, count = 0;
-        m.straddle(m.rowHeight(f, r, e), m.rowHeight(f, r, e + 1), first, count);
+        m.straddleCounts(countAt(f, r, e), countAt(f, r, e + 1), first, count);
         pos += count;
       }
       start[edges] = pos;

@@ -36,7 +36,8 @@ struct LeafInfo {
 class StockView {
  public:
   // The stock must outlive the view and stay unchanged while it is used.
-  explicit StockView(const mdh::Stock& stock);
+  // `threads`: how many threads index the leaves' rows of embedded heights.
+  explicit StockView(const mdh::Stock& stock, int threads = 1);
   ~StockView();
   StockView(const StockView&) = delete;
   StockView& operator=(const StockView&) = delete;
