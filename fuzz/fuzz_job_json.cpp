@@ -5,9 +5,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
-#include <string_view>
 
+#include "fuzz/json_input.h"
 #include "protocol/job_json.h"
 #include "protocol/json_schema.h"
 #include "sim/geometry/tool_part.h"
@@ -15,12 +16,9 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace mdhd;
-  nlohmann::json doc;
-  try {
-    doc = protocol::parseJsonText(std::string_view(reinterpret_cast<const char*>(data), size));
-  } catch (const protocol::FieldError&) {
-    return 0;
-  }
+  const std::optional<nlohmann::json> input = fuzz::jsonInput(data, size);
+  if (!input) return 0;
+  const nlohmann::json& doc = *input;
   const bool schemaAccepts = protocol::jobSchema().validate(doc).empty();
   protocol::Job job;
   try {

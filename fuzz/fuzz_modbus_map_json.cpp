@@ -4,19 +4,17 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <string_view>
+#include <optional>
 
+#include "fuzz/json_input.h"
 #include "protocol/job_json.h"
 #include "protocol/modbus_map_json.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace mdhd;
-  nlohmann::json doc;
-  try {
-    doc = protocol::parseJsonText(std::string_view(reinterpret_cast<const char*>(data), size));
-  } catch (const protocol::FieldError&) {
-    return 0;
-  }
+  const std::optional<nlohmann::json> input = fuzz::jsonInput(data, size);
+  if (!input) return 0;
+  const nlohmann::json& doc = *input;
   protocol::ModbusMap map;
   try {
     map = protocol::modbusMapFromJson(doc);
