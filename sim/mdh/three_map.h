@@ -64,10 +64,7 @@ class ThreeMap {
   // as the map; setHeight changes what it reads.
   const double* heightData() const { return heights_.data(); }
   void setHeight(int iu, int iv, double h) {
-    double& slot = heights_[iv * nu_ + iu];
-    fullColumns_ += (solidCount(h) == levels()) - (solidCount(slot) == levels());
-    emptyColumns_ += (solidCount(h) == 0) - (solidCount(slot) == 0);
-    slot = h;
+    setHeight(iu, iv, h, solidCount(heights_[iv * nu_ + iu]), solidCount(h));
   }
   // The same when the caller has the solid counts before and after (a cut does).
   void setHeight(int iu, int iv, double h, int countBefore, int countAfter) {
