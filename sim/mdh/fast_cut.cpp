@@ -32,7 +32,7 @@ struct Scratch {
   std::vector<std::uint8_t> changedMap;   // the columns that moved, every column
   std::vector<std::uint8_t> levelMarks;   // the levels a row of edges will ask for
   std::vector<int> lineU, lineV;          // the x or y lines the family loop will ask for
-  std::vector<std::size_t> movedColumns;  // fastCutLazy: the changes' column indices
+  std::vector<std::size_t> movedColumns;  // cutLazily: the changes' column indices
 };
 
 // The parent heights and what solid counts need, held in locals: the loops
