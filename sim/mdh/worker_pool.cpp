@@ -1,6 +1,7 @@
 #include "sim/mdh/worker_pool.h"
 
 #include <algorithm>
+#include <chrono>
 #include <utility>
 
 namespace mdhd::mdh {
@@ -11,16 +12,33 @@ WorkerPool::WorkerPool(int threads) {
 
 namespace {
 
-// Some tens of microseconds of polling: a pause takes some 40-140 cycles by the
-// vendors' figures (not measured here).
-constexpr int kSpins = 1000;
-
 inline void pause() {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
 #else
   std::this_thread::yield();
 #endif
+}
+
+// How long a thread polls before it sleeps, as a time: a pause lasts 10-140 cycles
+// by CPU (24 ns on the EPYC of docs/check.md, where 1000 pauses were too few). The
+// program's serial work between two batches (interpreting, building the next
+// sweep) takes some 50 us and a woken thread 50-100 us more on a virtual machine:
+// 25 us of polling left the helper idle 92-105 ms of the dome's 0.5 s cut, 250 us
+// 33-43 ms, 500 us and more 33-38 ms.
+constexpr std::chrono::microseconds kSpin{500};
+
+// Polls `done()` for up to kSpin; true if it came true.
+template <class Done>
+bool spinUntil(Done done) {
+  const auto until = std::chrono::steady_clock::now() + kSpin;
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (done()) return true;
+      pause();
+    }
+    if (std::chrono::steady_clock::now() >= until) return done();
+  }
 }
 
 }  // namespace
@@ -49,11 +67,11 @@ void WorkerPool::work() {
 void WorkerPool::helperLoop(int index) {
   std::uint64_t seen = 0;
   for (;;) {
-    std::uint64_t g = generation_.load(std::memory_order_acquire);
-    for (int i = 0; i < kSpins && g == seen && !stop_.load(std::memory_order_relaxed); ++i) {
-      pause();
+    std::uint64_t g = seen;
+    spinUntil([&] {
       g = generation_.load(std::memory_order_acquire);
-    }
+      return g != seen || stop_.load(std::memory_order_relaxed);
+    });
     if (g == seen) {
       std::unique_lock lock(mutex_);
       wake_.wait(lock, [&] {
@@ -89,7 +107,7 @@ void WorkerPool::run(std::size_t count, int workers, const std::function<void(st
   }
   if (helpers > 0) wake_.notify_all();
   work();
-  for (int i = 0; i < kSpins && busy_.load(std::memory_order_acquire) != 0; ++i) pause();
+  spinUntil([&] { return busy_.load(std::memory_order_acquire) == 0; });
   std::unique_lock lock(mutex_);
   done_.wait(lock, [&] { return busy_.load(std::memory_order_acquire) == 0; });
   task_ = nullptr;
