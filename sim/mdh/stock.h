@@ -84,6 +84,17 @@ struct LeafView {
   const ThreeMap* map;  // null unless partial
 };
 
+// f(LeafView) for every leaf under `c` (c itself if it is one), in the tree's order.
+template <class F>
+void visitLeaves(const Cell& c, const F& f) {
+  if (c.state == CellState::kInner) {
+    visitLeaves(*c.child[0], f);
+    visitLeaves(*c.child[1], f);
+    return;
+  }
+  f(LeafView{c.box, c.state, c.map.get()});
+}
+
 class Stock {
  public:
   // Throws std::invalid_argument for an empty box, a non-positive density or a grid too large.
@@ -199,6 +210,10 @@ class Stock {
   // several threads at once.
   void ensureSettled() const;
   void settleBricks(int workers);
+  // work(b) for every brick b, on the stock's threads in bands of bricks (threads of
+  // their own, not the pool: a const query may run on any thread, several at once,
+  // or on the pool itself). For whole-stock sums kept per brick, added in brick order.
+  void onBrickBands(const std::function<void(std::size_t)>& work) const;
   CutResult result(const CutCounters& step) const;
   // Solid segments (grid units, merged across cells) of one grid line.
   void gridLineSegments(int axis, int iu, int iv, std::vector<Span>& out) const;

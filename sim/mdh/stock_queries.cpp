@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/line_segments.h"
@@ -84,15 +86,6 @@ void lineSegments(const Cell& c, int axis, const std::array<int, 3>& at, std::ve
   lineSegments(*c.child[at[c.splitAxis] < c.splitAt ? 0 : 1], axis, at, out);
 }
 
-void visit(const Cell& c, const std::function<void(const LeafView&)>& f) {
-  if (c.state == CellState::kInner) {
-    visit(*c.child[0], f);
-    visit(*c.child[1], f);
-    return;
-  }
-  f(LeafView{c.box, c.state, c.map.get()});
-}
-
 }  // namespace
 
 const Cell* Stock::leafAt(const glm::dvec3& g) const {
@@ -146,14 +139,34 @@ void Stock::solidIntervals(int axis, int iu, int iv, std::vector<geom::Interval>
   }
 }
 
+void Stock::onBrickBands(const std::function<void(std::size_t)>& work) const {
+  const std::size_t n = roots_.size();
+  const auto band = [&](std::size_t b0, std::size_t b1) {
+    for (std::size_t b = b0; b < b1; ++b) work(b);
+  };
+  const std::size_t parts = std::clamp<std::size_t>(threads_, 1, std::max<std::size_t>(1, n / 8));
+  std::vector<std::jthread> helpers;
+  for (std::size_t k = 1; k < parts; ++k)
+    helpers.emplace_back(band, k * n / parts, (k + 1) * n / parts);
+  band(0, n / parts);
+}
+
 double Stock::volume() const {
-  double v = 0.0;
-  forEachLeaf([&](const LeafView& leaf) {
-    if (leaf.state == CellState::kSolid)
-      v += double(leaf.box.cubes(0)) * leaf.box.cubes(1) * leaf.box.cubes(2);
-    else if (leaf.map)
-      v += leaf.map->volume();
+  ensureSettled();
+  // Brick by brick (grid units), the bricks added in their order: the same bits on
+  // any number of threads. Summing a 3-way map's edge profiles is the work (the
+  // final volume of the dome at density 10: 0.36 G instructions).
+  std::vector<double> perBrick(roots_.size(), 0.0);
+  onBrickBands([&](std::size_t b) {
+    visitLeaves(roots_[b], [&](const LeafView& leaf) {
+      if (leaf.state == CellState::kSolid)
+        perBrick[b] += double(leaf.box.cubes(0)) * leaf.box.cubes(1) * leaf.box.cubes(2);
+      else if (leaf.map)
+        perBrick[b] += leaf.map->volume();
+    });
   });
+  double v = 0.0;
+  for (const double b : perBrick) v += b;
   return v * grid_.h * grid_.h * grid_.h;
 }
 
@@ -300,7 +313,7 @@ bool Stock::removesMaterial(const geom::LineSolid& solid, const geom::FreshRegio
 
 void Stock::forEachLeaf(const std::function<void(const LeafView&)>& f) const {
   ensureSettled();
-  for (const Cell& root : roots_) visit(root, f);
+  for (const Cell& root : roots_) visitLeaves(root, f);
 }
 
 }  // namespace mdhd::mdh

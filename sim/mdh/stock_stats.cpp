@@ -1,5 +1,7 @@
 // The stock's statistics and memory accounting (thesis 6.3).
 #include <algorithm>
+#include <array>
+#include <vector>
 
 #include "sim/mdh/stock.h"
 
@@ -56,18 +58,38 @@ Stats Stock::stats() const {
   s.memoryBytes =
       sizeof(Stock) + roots_.capacity() * sizeof(Cell) + options_.ruleset.capacity() * sizeof(Rule);
   for (const Cell& root : roots_) s.cells += countNodes(root, s.memoryBytes);
-  std::int64_t owners = 0;
-  forEachLeaf([&](const LeafView& leaf) {
-    ++s.leaves;
-    if (leaf.state == CellState::kSolid)
-      ++s.solid;
-    else if (leaf.state == CellState::kEmpty)
-      ++s.empty;
-    if (!leaf.map) return;
-    s.directions[leaf.map->direction().index()] += 1;
-    s.memoryBytes += leaf.map->memoryBytes();
-    owners += sampleOwners(*leaf.map, s.parentSamples, s.embeddedSamples);
+  // Per brick on the stock's threads (integers: any order gives the same sums).
+  struct Counts {
+    std::int64_t leaves = 0, solid = 0, empty = 0, owners = 0, parents = 0, embedded = 0;
+    std::size_t bytes = 0;
+    std::array<std::int64_t, 6> directions{};
+  };
+  std::vector<Counts> perBrick(roots_.size());
+  onBrickBands([&](std::size_t b) {
+    Counts& c = perBrick[b];
+    visitLeaves(roots_[b], [&](const LeafView& leaf) {
+      ++c.leaves;
+      if (leaf.state == CellState::kSolid)
+        ++c.solid;
+      else if (leaf.state == CellState::kEmpty)
+        ++c.empty;
+      if (!leaf.map) return;
+      c.directions[leaf.map->direction().index()] += 1;
+      c.bytes += leaf.map->memoryBytes();
+      c.owners += sampleOwners(*leaf.map, c.parents, c.embedded);
+    });
   });
+  std::int64_t owners = 0;
+  for (const Counts& c : perBrick) {
+    s.leaves += c.leaves;
+    s.solid += c.solid;
+    s.empty += c.empty;
+    for (int d = 0; d < 6; ++d) s.directions[d] += c.directions[d];
+    s.memoryBytes += c.bytes;
+    s.parentSamples += c.parents;
+    s.embeddedSamples += c.embedded;
+    owners += c.owners;
+  }
   s.splitsDirect = totals_.splits[int(SplitType::kDirect)];
   s.splitsIndirect = totals_.splits[int(SplitType::kIndirect)];
   s.splitsSignConflict = totals_.splits[int(SplitType::kSignConflict)];

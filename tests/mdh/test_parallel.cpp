@@ -44,6 +44,10 @@ void expectIdentical(const Snapshot& a, const Snapshot& b) {
   EXPECT_EQ(a.stats.splits(), b.stats.splits());
   EXPECT_EQ(a.stats.memoryBytes, b.stats.memoryBytes);
   EXPECT_EQ(a.stats.embeddedSamples, b.stats.embeddedSamples);
+  EXPECT_EQ(a.stats.parentSamples, b.stats.parentSamples);
+  EXPECT_EQ(a.stats.leaves, b.stats.leaves);
+  EXPECT_EQ(a.stats.directions, b.stats.directions);
+  EXPECT_EQ(a.stats.pointerGridBytes, b.stats.pointerGridBytes);
   ASSERT_EQ(a.lines.size(), b.lines.size());
   for (std::size_t i = 0; i < a.lines.size(); ++i) {
     ASSERT_EQ(a.lines[i].size(), b.lines[i].size()) << "line " << i;
@@ -111,6 +115,39 @@ TEST(Parallel, LargeStepsOnTheWorkerPoolMatchOneThreadBitForBit) {
   EXPECT_GT(one.stats.splits() + one.stats.resamples, 0);  // the slow path ran as well
   expectIdentical(one, two);
   expectIdentical(one, three);
+}
+
+// volume() and stats() add per-brick sums made on the stock's threads: they hold
+// every leaf of every brick (a walk over the leaves on this thread says the same).
+TEST(Parallel, VolumeAndStatsOnThreadsCountEveryLeaf) {
+  for (int threads : {1, 2, 3}) {
+    StockOptions o;
+    o.density = 10;
+    o.threads = threads;
+    o.brick = 8;
+    Stock stock(kBox, o);
+    for (const auto& s : testing::randomCuts(7, kBox, 3, 6)) {
+      stock.setToolRadius(s.radius);
+      stock.cut(*s.solid, s.direction);
+    }
+    double leafVolume = 0.0;
+    std::int64_t leaves = 0, partial = 0;
+    stock.forEachLeaf([&](const LeafView& leaf) {
+      ++leaves;
+      if (leaf.state == CellState::kSolid)
+        leafVolume += double(leaf.box.cubes(0)) * leaf.box.cubes(1) * leaf.box.cubes(2);
+      else if (leaf.map)
+        leafVolume += leaf.map->volume(), ++partial;
+    });
+    const double h3 = 0.1 * 0.1 * 0.1;
+    EXPECT_NEAR(stock.volume(), leafVolume * h3, 1e-9 * leafVolume * h3) << threads;
+    const Stats st = stock.stats();
+    EXPECT_EQ(st.leaves, leaves) << threads;
+    std::int64_t directions = 0;
+    for (std::int64_t d : st.directions) directions += d;
+    EXPECT_EQ(directions, partial) << threads;
+    EXPECT_GT(partial, 10) << threads;
+  }
 }
 
 }  // namespace
