@@ -26,7 +26,21 @@ void putVec(char* at, const glm::dvec3& v) {
   for (int i = 0; i < 3; ++i) putF32(at + 4 * i, v[i]);
 }
 
+constexpr std::size_t kBufferedTriangles = 1024;
+
 }  // namespace
+
+StlWriter::~StlWriter() {
+  try {
+    flushBuffer();
+  } catch (...) {  // a stream set to throw: nothing to report to from here
+  }
+}
+
+void StlWriter::flushBuffer() {
+  if (used_ > 0) out_.write(buffer_.data(), static_cast<std::streamsize>(used_));
+  used_ = 0;
+}
 
 StlWriter::StlWriter(std::ostream& out, std::string_view header,
                      std::optional<std::uint32_t> triangles)
@@ -44,12 +58,15 @@ void StlWriter::add(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
   glm::dvec3 n = glm::cross(b - a, c - a);
   const double len = glm::length(n);
   n = len > 0.0 ? n / len : glm::dvec3(0.0);
-  char rec[kStlTriangleBytes] = {};
+  if (buffer_.empty()) buffer_.resize(kBufferedTriangles * kStlTriangleBytes);
+  if (used_ == buffer_.size()) flushBuffer();
+  char* rec = buffer_.data() + used_;
   putVec(rec, n);
   putVec(rec + 12, a);
   putVec(rec + 24, b);
   putVec(rec + 36, c);
-  out_.write(rec, sizeof rec);
+  rec[48] = rec[49] = 0;  // the attribute word
+  used_ += kStlTriangleBytes;
   ++written_;
 }
 
@@ -61,6 +78,7 @@ void StlWriter::triangle(const mesh::MeshVertex& a, const mesh::MeshVertex& b,
 void StlWriter::finish() {
   if (finished_) return;
   finished_ = true;
+  flushBuffer();
   if (!out_) throw std::runtime_error("STL: the output stream failed while writing");
   if (written_ > std::numeric_limits<std::uint32_t>::max())
     throw std::runtime_error("STL: " + std::to_string(written_) +

@@ -12,6 +12,7 @@
 #include <optional>
 #include <ostream>
 #include <string_view>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -28,6 +29,10 @@ class StlWriter final : public mesh::MeshSink {
   // if given, else a placeholder that finish() patches.
   explicit StlWriter(std::ostream& out, std::string_view header = "mdhd binary STL (mm)",
                      std::optional<std::uint32_t> triangles = std::nullopt);
+  // Hands on what is buffered if finish() was not called (no count patched then).
+  ~StlWriter() override;
+  StlWriter(const StlWriter&) = delete;
+  StlWriter& operator=(const StlWriter&) = delete;
 
   void triangle(const mesh::MeshVertex& a, const mesh::MeshVertex& b, const mesh::MeshVertex& c,
                 bool exterior) override;
@@ -46,6 +51,11 @@ class StlWriter final : public mesh::MeshSink {
   std::ostream::pos_type countAt_;
   std::uint64_t written_ = 0;
   bool finished_ = false;
+  // Records go to the stream a chunk at a time: one ostream::write per triangle (a
+  // sentry and a virtual call each) was a tenth of meshing's serial part.
+  void flushBuffer();
+  std::vector<char> buffer_;
+  std::size_t used_ = 0;
 };
 
 }  // namespace mdhd::protocol

@@ -140,5 +140,36 @@ TEST(Stl, FailedStreamIsReported) {
   EXPECT_THROW(w.finish(), std::runtime_error);
 }
 
+// Records are buffered and written a chunk at a time: thousands of triangles (several
+// chunks and a partial one) come out whole and in order, through a pipe too.
+TEST(Stl, ManyTrianglesComeOutInOrderAcrossChunks) {
+  constexpr int kTriangles = 2500;
+  PipeBuf pipe;
+  std::ostream out(&pipe);
+  StlWriter w(out, "many", kTriangles);
+  for (int i = 0; i < kTriangles; ++i) w.add({i, 0, 0}, {i + 1.0, 0, 0}, {i, 1, 0});
+  w.finish();
+  ASSERT_EQ(pipe.data.size(), kStlHeaderBytes + 4 + kTriangles * kStlTriangleBytes);
+  EXPECT_EQ(u32At(pipe.data, 80), std::uint32_t(kTriangles));
+  for (int i = 0; i < kTriangles; ++i) {
+    const std::size_t at = kStlHeaderBytes + 4 + i * kStlTriangleBytes;
+    ASSERT_EQ(f32At(pipe.data, at + 12), float(i)) << i;      // first vertex x
+    ASSERT_EQ(f32At(pipe.data, at + 24), float(i + 1)) << i;  // second vertex x
+    ASSERT_EQ(pipe.data[at + 48], '\0');
+    ASSERT_EQ(pipe.data[at + 49], '\0');
+  }
+}
+
+// A writer dropped without finish() still hands on the records it took (the count
+// stays the placeholder: finish() is what completes a file).
+TEST(Stl, RecordsReachTheStreamWithoutFinish) {
+  std::stringstream out;
+  {
+    StlWriter w(out);
+    w.add({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  }
+  EXPECT_EQ(out.str().size(), kStlHeaderBytes + 4 + kStlTriangleBytes);
+}
+
 }  // namespace
 }  // namespace mdhd::protocol
