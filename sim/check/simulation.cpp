@@ -107,11 +107,18 @@ Simulation::Simulation(const kin::Kinematics& kin, const std::vector<geom::Tool>
              options_.chain_tolerance < 0.0 ? 0.5 * options_.tolerance : options_.chain_tolerance),
       started_(Clock::now()) {
   for (const geom::Tool& t : tools) {
-    ToolParts p{t, geom::makeToolPart(t, geom::ToolPartKind::kCutter),
+    ToolParts p{t,
+                geom::makeToolPart(t, geom::ToolPartKind::kCutter),
                 geom::makeToolPart(t, geom::ToolPartKind::kShank),
-                geom::makeToolPart(t, geom::ToolPartKind::kHolder), 0.0};
+                geom::makeToolPart(t, geom::ToolPartKind::kHolder),
+                0.0,
+                {},
+                {}};
     for (const geom::ToolPart* part : {&p.cutter, &p.shank, &p.holder})
       if (!part->empty()) p.reach = std::max(p.reach, part->reach());
+    for (auto [part, ball] :
+         {std::pair{&p.shank, &p.shankBall}, std::pair{&p.holder, &p.holderBall}})
+      if (!part->empty()) *ball = {part->centreHeight(), part->reach(part->centreHeight())};
     tools_.emplace(t.number, std::move(p));
   }
   stock_ = std::make_unique<mdh::Stock>(stock, stockOptions(options_, kin.machine(), tools, stock));
@@ -237,16 +244,35 @@ void Simulation::checkLimits(const gcode::Motion& m, const kin::JointPath& path)
 }
 
 geom::SweptVolume Simulation::sweep(const Step& step, const geom::ToolPart& part, double f) const {
-  const geom::ToolPose end =
-      f >= 1.0 ? step.b.pose : geom::interpolatePose(step.a.pose, step.b.pose, f);
+  return sweep(step.a.pose,
+               f >= 1.0 ? step.b.pose : geom::interpolatePose(step.a.pose, step.b.pose, f), part);
+}
+
+geom::SweptVolume Simulation::sweep(const geom::ToolPose& a, const geom::ToolPose& end,
+                                    const geom::ToolPart& part) const {
   const double tol = part.kind == geom::ToolPartKind::kCutter
                          ? options_.tolerance
                          : std::max(options_.tolerance, contact_tolerance_);
   // Each segment of a turning move holds its middle pose's axis: one translation
   // fewer per step for the same errorBound() (the end poses are then within it too,
   // and consecutive steps overlap there).
-  return geom::SweptVolume::between(part, step.a.pose, end, options_.steps > 0 ? 1 : 0, tol,
+  return geom::SweptVolume::between(part, a, end, options_.steps > 0 ? 1 : 0, tol,
                                     geom::SweepEnds::kMidpoints);
+}
+
+bool Simulation::mayTouchStock(const PartBall& ball, const geom::ToolPose& a,
+                               const geom::ToolPose& b) const {
+  if (ball.radius < 0.0) return false;
+  if (!fixtures_->empty() || a.axis != b.axis) return true;
+  // Translated, the part stays in the capsule of its ball: compare boxes.
+  const mdh::GridSpec& g = stock_->grid();
+  const double margin = ball.radius + contact_tolerance_ + g.h;
+  for (int i = 0; i < 3; ++i) {
+    const double ca = a.tip[i] + ball.height * a.axis[i], cb = b.tip[i] + ball.height * b.axis[i];
+    const double lo = g.origin[i], hi = g.origin[i] + g.cubes[i] * g.h;
+    if (std::min(ca, cb) - margin > hi || std::max(ca, cb) + margin < lo) return false;
+  }
+  return true;
 }
 
 Collision Simulation::entry(const Step& step, CollisionType type, double f) const {
@@ -320,10 +346,12 @@ void Simulation::runStep(const gcode::Motion& m, const kin::JointPath& path, con
   checkCancel();
   ++stats_.steps;
   if (parts != nullptr) {
-    Step step{m, path, *parts, a, b, geom::SweptVolume::at(parts->cutter, a.pose), {}, {}};
-    step.cutter = sweep(step, parts->cutter, 1.0);
-    if (!parts->shank.empty()) step.shank = sweep(step, parts->shank, 1.0);
-    if (!parts->holder.empty()) step.holder = sweep(step, parts->holder, 1.0);
+    Step step{m, path, *parts, a, b, sweep(a.pose, b.pose, parts->cutter), {}, {}};
+    // A shank or holder far above the stock needs no sweep: it cannot touch.
+    if (mayTouchStock(parts->shankBall, a.pose, b.pose))
+      step.shank = sweep(step, parts->shank, 1.0);
+    if (mayTouchStock(parts->holderBall, a.pose, b.pose))
+      step.holder = sweep(step, parts->holder, 1.0);
     cutterStep(step, removed);
     stockContacts(step);
     if (!fixtures_->empty()) fixtureContacts(step);

@@ -144,10 +144,16 @@ class Simulation final : public gcode::MotionSink {
   double contactTolerance() const { return contact_tolerance_; }
 
  private:
+  // A ball holding a tool part wherever its tip and axis are: centred `height` up the
+  // axis from the tip, of radius `radius` (none for an empty part).
+  struct PartBall {
+    double height = 0.0, radius = -1.0;
+  };
   struct ToolParts {
     geom::Tool tool;
     geom::ToolPart cutter, shank, holder;
     double reach = 0.0;
+    PartBall shankBall, holderBall;
   };
   struct Step;
   struct ForkTag {};
@@ -174,6 +180,12 @@ class Simulation final : public gcode::MotionSink {
   double firstContact(const Step& step, const geom::ToolPart& part, const Touches& touches,
                       Bracket& bracket, int bisections) const;
   geom::SweptVolume sweep(const Step& step, const geom::ToolPart& part, double f) const;
+  geom::SweptVolume sweep(const geom::ToolPose& a, const geom::ToolPose& end,
+                          const geom::ToolPart& part) const;
+  // Whether a contact check needs `part`'s sweep over the step a -> b: there are
+  // fixtures, the axis turns, or the ball holding the part comes within reach of the
+  // stock's box (material never leaves it).
+  bool mayTouchStock(const PartBall& ball, const geom::ToolPose& a, const geom::ToolPose& b) const;
   void checkCancel() const;
   void requireFlushed(const char* what) const;
 

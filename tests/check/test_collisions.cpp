@@ -109,6 +109,27 @@ TEST(Collisions, HolderBuriedByAPlunge) {
   EXPECT_TRUE(ofType(r, CollisionType::kShankContact).empty());
 }
 
+// The holder's centre stays outside the stock's box, its rim 1 mm into the side: the
+// sweep that finds it is still made (a part far from the stock gets none).
+TEST(Collisions, HolderRimInTheSideFromOutsideTheStock) {
+  Rig s;
+  s.options.density = 5;
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S9000\n"          // 4
+                                         "G0 X-9 Y20 Z5\n"     // 5: holder (r 10) over x -19..1
+                                         "G1 Z-35 F500\n"      // 6: its bottom down to z -5
+                                         "G1 Y25\n"            // 7: along the side
+                                         "G0 Z5\nM5\nM30\n");  // 8
+  const auto holder = ofType(r, CollisionType::kHolderContact);
+  ASSERT_EQ(holder.size(), 1u);
+  EXPECT_EQ(holder[0]->line, 6);
+  EXPECT_EQ(holder[0]->last_line, 8);
+  EXPECT_NEAR(holder[0]->position.z, -30.0, 0.25);  // the holder's bottom meets z 0
+  EXPECT_GT(holder[0]->depth, 0.5);
+  EXPECT_TRUE(ofType(r, CollisionType::kShankContact).empty());
+  EXPECT_NEAR(r.stats.removed_volume_mm3, 0.0, 1e-9);  // contacts remove nothing
+}
+
 TEST(Collisions, ContactsShallowerThanTheToleranceAreNotCollisions) {
   Rig s;
   s.options.density = 5;
