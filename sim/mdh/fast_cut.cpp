@@ -127,6 +127,30 @@ bool cutZColumn(const ThreeMap& m, double h, std::span<const Span> tool, Scratch
   const int a = m.axis();
   const double lo = m.box().lo[a], hi = m.box().hi[a];
   const bool up = m.direction().sign > 0;
+  if (tool.size() == 1 && m.solidCount(h) > 0) {
+    // The usual column: one solid run less one open tool span, as subtractOpen, the
+    // vertex filter and heightFromRuns below make it, without their vectors.
+    const Span c = up ? Span{lo, std::min(h, hi)} : Span{std::max(h, lo), hi};
+    const Span t = tool[0];
+    Span piece[2];
+    int n = 0;
+    if (t.hi <= c.lo || t.lo >= c.hi) {
+      piece[n++] = c;
+    } else {
+      if (t.lo >= c.lo) piece[n++] = {c.lo, t.lo};
+      if (!(t.hi > c.hi)) piece[n++] = {t.hi, c.hi};
+    }
+    int kept = 0;
+    for (int i = 0; i < n; ++i)
+      if (std::ceil(piece[i].lo) <= std::floor(piece[i].hi)) piece[kept++] = piece[i];
+    if (kept == 0) {
+      out = m.emptyHeight();
+      return true;
+    }
+    if (kept > 1 || (up ? piece[0].lo > lo : piece[0].hi < hi)) return false;
+    out = up ? piece[0].hi : piece[0].lo;
+    return true;
+  }
   s.before.clear();
   if (m.solidCount(h) > 0)
     s.before.push_back(up ? Span{lo, std::min(h, hi)} : Span{std::max(h, lo), hi});
