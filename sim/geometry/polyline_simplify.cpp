@@ -1,7 +1,6 @@
 #include "sim/geometry/polyline_simplify.h"
 
 #include <algorithm>
-#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -23,39 +22,23 @@ void simplifyPolyline(std::span<const glm::dvec3> points, std::span<const std::u
                       double tolerance, std::vector<std::size_t>& kept) {
   kept.clear();
   const std::size_t n = points.size();
-  if (n <= 2) {
-    for (std::size_t i = 0; i < n; ++i) kept.push_back(i);
-    return;
-  }
-  std::vector<std::uint8_t> keep(n, 0);
-  keep.front() = keep.back() = 1;
-  if (!fixed.empty())
-    for (std::size_t i = 0; i < n; ++i) keep[i] = keep[i] | (fixed[i] != 0);
+  if (n == 0) return;
   const double tol2 = tolerance * tolerance;
-  // Between each pair of neighbouring kept points, the farthest point from their
-  // segment is kept while it is farther than the tolerance.
-  std::vector<std::pair<std::size_t, std::size_t>> spans;
-  for (std::size_t i = 0, j = 1; j < n; ++j)
-    if (keep[j]) {
-      spans.emplace_back(i, j);
-      i = j;
-    }
-  while (!spans.empty()) {
-    const auto [i, j] = spans.back();
-    spans.pop_back();
-    double worst = -1.0;
-    std::size_t at = i;
-    for (std::size_t k = i + 1; k < j; ++k) {
-      const double d2 = squaredDistanceToSegment(points[k], points[i], points[j]);
-      if (d2 > worst) worst = d2, at = k;
-    }
-    if (at == i || !(worst > tol2)) continue;
-    keep[at] = 1;
-    spans.emplace_back(i, at);
-    spans.emplace_back(at, j);
+  // Whether every point strictly between i and j lies within the tolerance of (i, j).
+  const auto fits = [&](std::size_t i, std::size_t j) {
+    for (std::size_t k = i + 1; k < j; ++k)
+      if (squaredDistanceToSegment(points[k], points[i], points[j]) > tol2) return false;
+    return true;
+  };
+  kept.push_back(0);
+  for (std::size_t i = 0; i + 1 < n;) {
+    // The chord from i reaches as far as it can: up to a fixed point at most, and
+    // no further than the first point it would leave out of the tolerance.
+    std::size_t j = i + 1;
+    while (j + 1 < n && !(!fixed.empty() && fixed[j] != 0) && fits(i, j + 1)) ++j;
+    kept.push_back(j);
+    i = j;
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (keep[i]) kept.push_back(i);
 }
 
 }  // namespace mdhd::geom

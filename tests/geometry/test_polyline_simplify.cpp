@@ -1,5 +1,5 @@
-// Douglas-Peucker on tool tips: every dropped point within the tolerance of the
-// segment that replaces it, the ends and fixed points kept, straight runs dropped.
+// Chords that reach as far as they can on tool tips: every dropped point within the tolerance of
+// the segment that replaces it, the ends and fixed points kept, straight runs dropped.
 #include "sim/geometry/polyline_simplify.h"
 
 #include <cmath>
@@ -77,6 +77,25 @@ TEST(PolylineSimplify, StraightRunsGoAndZigzagsStay) {
   EXPECT_EQ(kept, (std::vector<std::size_t>{0, 4, 9}));
   simplifyPolyline(std::vector<glm::dvec3>{}, {}, 0.01, kept);
   EXPECT_TRUE(kept.empty());
+}
+
+// A raster pass over a dome (radius 83 mm, steps of 0.5 mm, half the default tolerance):
+// a chord of three steps stays within 0.005 mm (sagitta 0.0034), of four it does not
+// (0.0060). Every chord but the last spans three steps, whatever the chain's length:
+// halving (Douglas-Peucker) fell to chords of two on chains of 16 or 32 steps.
+TEST(PolylineSimplify, ChordsOnAnArcReachAsFarAsTheToleranceLets) {
+  const double radius = 83.0, step = 0.5, tol = 0.005;
+  std::vector<std::size_t> kept;
+  for (const int steps : {16, 24, 32, 48}) {
+    std::vector<glm::dvec3> arc;
+    for (int i = 0; i <= steps; ++i) {
+      const double a = i * step / radius;
+      arc.push_back(glm::dvec3(radius * std::sin(a), 0.0, radius * std::cos(a)));
+    }
+    simplifyPolyline(arc, {}, tol, kept);
+    ASSERT_EQ(kept.size(), static_cast<std::size_t>((steps + 2) / 3 + 1)) << steps;
+    for (std::size_t j = 0; j + 2 < kept.size(); ++j) EXPECT_EQ(kept[j + 1] - kept[j], 3u) << steps;
+  }
 }
 
 }  // namespace
