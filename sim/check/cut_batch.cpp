@@ -12,7 +12,7 @@ CutBatch::CutBatch(int max_steps, double chain_tolerance)
 
 namespace {
 
-// The chain's poses less those Douglas-Peucker drops within `tolerance`: a pose
+// The chain's poses less those a chord skips within `tolerance`: a pose
 // between two straight steps may go, the first, the last and any other stay.
 std::vector<geom::ToolPose> simplifiedChain(const std::vector<geom::ToolPose>& poses,
                                             const std::vector<std::uint8_t>& straight,

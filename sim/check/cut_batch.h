@@ -9,7 +9,7 @@
 // size backs off for a while.
 //
 // With a chain tolerance t > 0, the batch's union is cut along the chain less the
-// points between two straight feed steps that Douglas-Peucker can drop within t
+// points between two straight feed steps that a chord can skip within t
 // (geom::simplifyPolyline): the swept volume then stays within t of the steps' (the
 // same shape translated along paths within t of each other), and a raster of short
 // moves along a smooth surface is cut with a few long translations instead of many

@@ -45,7 +45,7 @@ struct SimulationOptions {
   // Feed steps translating one cutter along a chain are cut up to this many at once
   // (cut_batch.h; 1: one by one): the same report up to the map's resolution (rarely a
   // crossing placed elsewhere inside its grid edge).
-  int batch_steps = 16;
+  int batch_steps = 24;  // 16 before session 15 (docs/check.md, "Session 15")
   // A batch's chain drops the points between straight feed steps that stay within this
   // many mm of the chain that replaces them (check/cut_batch.h): < 0 half of
   // `tolerance`, 0 none (every batch the stock the steps one by one would leave).
