@@ -87,6 +87,17 @@ class Mesher {
   }
   bool solidAt(const GridPoint& p) { return view_.solidOwnedBy(vertexOwner(p), p); }
 
+  // Recent crossings by edge: a grid edge is shared by up to four cubes and squares,
+  // each of which asked its owner again. Direct-mapped; what an edge's owner says does
+  // not depend on who asks, so a hit gives the same bits.
+  struct Memo {
+    std::uint64_t where = ~std::uint64_t{0};
+    int axis = -1;
+    double t = 0.0;
+  };
+  static constexpr int kMemoBits = 10;
+  std::array<Memo, std::size_t{1} << kMemoBits> memo_{};
+
   int hint_ = -1;     // the leaf being meshed
   int foreign_ = -1;  // the last vertex owner other than hint_
   std::uint64_t nextInner_ = 0;
@@ -118,15 +129,23 @@ class Mesher {
 };
 
 double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid, bool owned) {
+  const std::uint64_t where = packGridVertex(p[0], p[1], p[2]);
+  Memo& memo = memo_[((where * 3 + static_cast<std::uint64_t>(axis)) * 0x9e3779b97f4a7c15ull) >>
+                     (64 - kMemoBits)];
+  if (memo.where == where && memo.axis == axis) return memo.t;
   const double x = view_.crossingOwnedBy(owned ? hint_ : vertexOwner(p), p, axis);
   double t = x - p[axis];
   if (!std::isfinite(t)) {
     // The edge's owner sees no surface here, the end's owner does: in practice a
-    // solid interval ending right on the shared vertex, so the crossing goes there.
+    // solid interval ending right on the shared vertex, so the crossing goes there
+    // (not remembered: counted each time, as before the memo).
     ++stats_.fallbackCrossings;
     t = startSolid ? 0.0 : 1.0;
+    return std::clamp(t, kCrossingMargin, 1.0 - kCrossingMargin);
   }
-  return std::clamp(t, kCrossingMargin, 1.0 - kCrossingMargin);
+  t = std::clamp(t, kCrossingMargin, 1.0 - kCrossingMargin);
+  memo = {where, axis, t};
+  return t;
 }
 
 LoopPoint Mesher::crossingPoint(const GridPoint& p, int axis, double t) const {
