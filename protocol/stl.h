@@ -52,7 +52,8 @@ class StlWriter final : public mesh::MeshSink {
   std::uint64_t written_ = 0;
   bool finished_ = false;
   // Records go to the stream a chunk at a time: one ostream::write per triangle (a
-  // sentry and a virtual call each) was a tenth of meshing's serial part.
+  // sentry and a virtual call each) cost 0.19 G instructions of the 3-axis dome's
+  // meshing at density 10, on the thread that feeds the sink.
   void flushBuffer();
   std::vector<char> buffer_;
   std::size_t used_ = 0;

@@ -1,13 +1,15 @@
 #pragma once
 // Which points a chain of tool tips (a chain of translations) can do without while
-// every point dropped stays within `tolerance` of the segment that replaces it:
-// each kept point's chord reaches as far along the chain as it can (Douglas-Peucker's
-// halving kept twice the points on an arc whose best chords span three steps: a
-// chord of 2^k steps fails and halves down to chords of two). A segment of the chain has both its
-// ends within `tolerance` of that segment, so it lies within `tolerance` of it (the distance to a
-// segment is convex), and the segment within `tolerance` of the chain (the chain's projection onto
-// it covers it): the two paths are within `tolerance` of each other both ways, and so are the swept
-// volumes of one tool shape translated along them.
+// every point dropped stays within `tolerance` of the segment that replaces it. Each
+// kept point's chord reaches as far along the chain as it can (Douglas-Peucker, used
+// before, halves a chain: on an arc whose chords fit three steps but not four, chains
+// of 2^k steps fell to chords of two).
+//
+// Why that is enough: a segment of the chain has both its ends within `tolerance` of
+// the chord, so it lies within `tolerance` of it (the distance to a segment is
+// convex), and the chord within `tolerance` of the chain (the chain's projection onto
+// it covers it): the two paths are within `tolerance` of each other both ways, and so
+// are the swept volumes of one tool shape translated along them.
 #include <cstddef>
 #include <cstdint>
 #include <span>
