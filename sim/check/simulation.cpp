@@ -266,7 +266,9 @@ bool Simulation::mayTouchStock(const PartBall& ball, const geom::ToolPose& a,
   if (!fixtures_->empty() || a.axis != b.axis) return true;
   // Translated, the part stays in the capsule of its ball: compare boxes.
   const mdh::GridSpec& g = stock_->grid();
-  const double margin = ball.radius + contact_tolerance_ + g.h;
+  // The sweep may stand out of the part by its tolerance; a grid spacing more for luck.
+  const double margin =
+      ball.radius + std::max(options_.tolerance, contact_tolerance_) + contact_tolerance_ + g.h;
   for (int i = 0; i < 3; ++i) {
     const double ca = a.tip[i] + ball.height * a.axis[i], cb = b.tip[i] + ball.height * b.axis[i];
     const double lo = g.origin[i], hi = g.origin[i] + g.cubes[i] * g.h;
