@@ -87,5 +87,50 @@ TEST(FastCut, PlainHeightmapsToo) {
   runRandomCuts(Direction{0, -1}, false, 6);
 }
 
+// Tool faces exactly on grid levels, the cell's base and top among them: the open
+// interval leaves a vertex on its end solid (a zero-length run at the base: the column
+// keeps that vertex), and the fast path must say so as the slow path does.
+TEST(FastCut, ToolFacesOnGridLevelsMatchTheSlowPath) {
+  GridSpec grid;
+  grid.h = 0.1;
+  grid.cubes = {12, 10, 22};
+  const GridBox box{{0, 0, 0}, {12, 10, 22}};
+  // z ranges in grid levels, each box over part of the columns.
+  const double ranges[][2] = {{0, 30}, {0, 22}, {5, 30}, {22, 30},  {-3, 30}, {-3, 0},
+                              {4, 9},  {0, 4},  {7, 22}, {7.5, 30}, {-3, 7.5}};
+  int done = 0;
+  for (const int sign : {1, -1})
+    for (const bool threeWay : {true, false})
+      for (const auto& r : ranges)
+        for (const bool cutFirst : {false, true}) {
+          ThreeMap map(box, Direction{2, sign}, threeWay);
+          if (cutFirst) {  // heights on and between levels first
+            const testing::BoxSolid first({0.25, 0.15, sign > 0 ? 1.6 : -1.0},
+                                          {0.85, 0.75, sign > 0 ? 3.0 : 0.65});
+            const IntervalCache c(grid, first);
+            fastCut(map, c, c.touched(), nullptr);
+          }
+          const double lo = grid.h * r[0], hi = grid.h * r[1];
+          // Mirrored for a -z map, so that the same ranges meet its open side.
+          const double zlo = sign > 0 ? lo : 2.2 - hi, zhi = sign > 0 ? hi : 2.2 - lo;
+          const testing::BoxSolid tool({0.3, 0.2, zlo}, {1.0, 0.9, zhi});
+          const IntervalCache cache(grid, tool);
+          const ThreeMap before = map;
+          const FastCut result = fastCut(map, cache, cache.touched(), nullptr);
+          SCOPED_TRACE(::testing::Message()
+                       << "sign " << sign << " threeWay " << threeWay << " range " << r[0] << ".."
+                       << r[1] << " cutFirst " << cutFirst);
+          if (result == FastCut::kOverhang) {
+            expectSameMap(map, before);
+            continue;
+          }
+          SampleGrid g = SampleGrid::decode(before, box);
+          g.applyCut(cache);
+          expectSameMap(map, encodeMap(g, Direction{2, sign}, threeWay));
+          done += result == FastCut::kDone;
+        }
+  EXPECT_GT(done, 30);
+}
+
 }  // namespace
 }  // namespace mdhd::mdh
