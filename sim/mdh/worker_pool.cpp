@@ -23,7 +23,7 @@ inline void pause() {
 // How long a thread polls before it sleeps, as a time: a pause lasts 10-140 cycles
 // by CPU (24 ns on the EPYC of docs/check.md, where 1000 pauses were too few). The
 // program's serial work between two batches (interpreting, building the next
-// sweep) takes some 50 us and a woken thread 50-100 us more on a virtual machine:
+// sweep) takes some 50 us, after which a sleeping helper still has to be woken:
 // 25 us of polling left the helper idle 92-105 ms of the dome's 0.5 s cut, 250 us
 // 33-43 ms, 500 us and more 33-38 ms.
 constexpr std::chrono::microseconds kSpin{500};
