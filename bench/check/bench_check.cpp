@@ -170,6 +170,7 @@ nlohmann::json simulate(const Case& c, double density, check::SimulationOptions 
           {"steps", r.stats.steps},
           {"cells", r.mdh.cells},
           {"leaves", r.mdh.leaves},
+          {"directions", r.mdh.directions},
           {"memory_bytes", r.mdh.memoryBytes},
           {"removed_mm3", r.stats.removed_volume_mm3},
           {"final_mm3", r.stats.final_volume_mm3},
@@ -396,6 +397,11 @@ int main(int argc, char** argv) {
           "  slow path: %lld overhang events, %lld resamples, %lld splits, %lld forced cells\n",
           r["overhang_events"].get<long long>(), r["resamples"].get<long long>(),
           r["splits"].get<long long>(), r["forced_cells"].get<long long>());
+      const auto& dirs = r["directions"];
+      std::printf(
+          "  partial leaves by direction: +x %lld, -x %lld, +y %lld, -y %lld, +z %lld, -z %lld\n",
+          dirs[0].get<long long>(), dirs[1].get<long long>(), dirs[2].get<long long>(),
+          dirs[3].get<long long>(), dirs[4].get<long long>(), dirs[5].get<long long>());
       if (c.name == "dome 3-axis") ours.push_back({d, wall, r["overcut_mm"].get<double>()});
       if (withFreecad && c.name == "dome 3-axis") {
         const nlohmann::json f = freecad(work, peerGcode, d);

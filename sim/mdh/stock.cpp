@@ -92,11 +92,25 @@ Stock::~Stock() = default;
 
 CutResult Stock::cut(const geom::LineSolid& solid, const glm::dvec3& toolDirection,
                      const geom::FreshRegion* fresh) {
+  return cutWith(solid, nullptr, toolDirection, fresh);
+}
+
+CutResult Stock::cut(std::shared_ptr<const geom::LineSolid> solid, const glm::dvec3& toolDirection,
+                     const geom::FreshRegion* fresh) {
+  const geom::LineSolid& s = *solid;
+  return cutWith(s, lazyCrossings() ? std::move(solid) : nullptr, toolDirection, fresh);
+}
+
+CutResult Stock::cutWith(const geom::LineSolid& solid,
+                         std::shared_ptr<const geom::LineSolid> lazySolid,
+                         const glm::dvec3& toolDirection, const geom::FreshRegion* fresh) {
   ++step_;
   const glm::dvec3 tool_direction = usableDirection(toolDirection);
   IntervalCache cache(grid_, solid, lines_.get());
   if (cache.touched().empty()) return {};
-  CutCounters step = cutBricks(cache, tool_direction, fresh);
+  const bool lazy = lazySolid != nullptr;
+  CutCounters step = cutBricks(cache, tool_direction, fresh, nullptr, std::move(lazySolid));
+  if (lazy) pending_.store(true, std::memory_order_release);
   // Vertices forced cells dropped are cut out of every other cell holding
   // them (which may force more): neighbours keep one state per vertex.
   for (std::vector<std::array<int, 3>> dropped; !step.dropped.empty();) {
@@ -131,8 +145,8 @@ std::optional<CutResult> Stock::cutIfFast(std::shared_ptr<const geom::LineSolid>
                                           const glm::dvec3& toolDirection,
                                           const geom::FreshRegion* fresh, std::uint64_t steps) {
   const geom::LineSolid& s = *solid;
-  const bool lazy = options_.lazy_crossings && options_.three_way && !options_.step_volumes;
-  return cutIfFastWith(s, lazy ? std::move(solid) : nullptr, toolDirection, fresh, steps);
+  return cutIfFastWith(s, lazyCrossings() ? std::move(solid) : nullptr, toolDirection, fresh,
+                       steps);
 }
 
 std::optional<CutResult> Stock::cutIfFastWith(const geom::LineSolid& solid,

@@ -53,7 +53,7 @@ struct StockOptions {
 
 struct CutResult {
   double removed_volume = 0.0;  // mm^3, this step (0 unless StockOptions::step_volumes)
-  bool touched = false;         // any material changed
+  bool touched = false;         // any material changed (or may have: a lazy cut into a z map)
   bool overhang = false;        // some cell needed a new direction or a split
   std::int64_t overhang_events = 0;
   std::int64_t splits = 0;
@@ -113,6 +113,11 @@ class Stock {
   // bricks and grid lines outside it are not looked at. The result is the same to
   // the bit (line_segments.h, kToolSlack).
   CutResult cut(const geom::LineSolid& solid, const glm::dvec3& tool_direction,
+                const geom::FreshRegion* fresh = nullptr);
+  // The same with the solid shared: z maps the cut reaches keep it for the crossings
+  // across their columns, computed later (StockOptions::lazy_crossings, as cutIfFast's
+  // below); `touched` is then true wherever it reaches a partial z map.
+  CutResult cut(std::shared_ptr<const geom::LineSolid> solid, const glm::dvec3& tool_direction,
                 const geom::FreshRegion* fresh = nullptr);
   // The same cut, taken only when every cell it reaches stays in its direction
   // without a split (the fast path): otherwise the stock is left exactly as it was
@@ -201,6 +206,12 @@ class Stock {
                          const geom::FreshRegion* fresh,
                          const std::shared_ptr<const geom::LineSolid>& lazySolid,
                          CutCounters& step);
+  // Whether a cut with a shared solid leaves z maps' crossings pending.
+  bool lazyCrossings() const {
+    return options_.lazy_crossings && options_.three_way && !options_.step_volumes;
+  }
+  CutResult cutWith(const geom::LineSolid& solid, std::shared_ptr<const geom::LineSolid> lazySolid,
+                    const glm::dvec3& toolDirection, const geom::FreshRegion* fresh);
   std::optional<CutResult> cutIfFastWith(const geom::LineSolid& solid,
                                          std::shared_ptr<const geom::LineSolid> lazySolid,
                                          const glm::dvec3& toolDirection,

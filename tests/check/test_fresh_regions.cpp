@@ -77,8 +77,9 @@ std::string randomFiveAxisProgram(std::uint32_t seed) {
   return w.out.str();
 }
 
-Report runWith(const std::string& program, bool fresh) {
+Report runWith(const std::string& program, bool fresh, bool lazyCrossings = true) {
   rig::Rig s;
+  s.options.lazy_crossings = lazyCrossings;
   s.machine = kin::presets::acTrunnion();
   s.stock = {{-10, -10, 0}, {10, 10, 10}};
   s.options.density = 5;
@@ -105,6 +106,33 @@ TEST_P(FreshRegions, RandomFiveAxisProgramsGiveTheReportOfWholeCuts) {
     EXPECT_EQ(fresh.collisions[i].type, whole.collisions[i].type) << i;
     EXPECT_EQ(fresh.collisions[i].line, whole.collisions[i].line) << i;
     EXPECT_EQ(fresh.collisions[i].depth, whole.collisions[i].depth) << i;
+  }
+}
+
+// The turning steps are cut one by one with their crossings across z maps left
+// pending (mdh::Stock::cut with a shared solid): the report of eager cuts to the bit,
+// the motions' cutting times (asked of the z lines before each cut) included.
+TEST_P(FreshRegions, RandomFiveAxisProgramsGiveTheReportOfEagerCrossings) {
+  const std::string program = randomFiveAxisProgram(GetParam());
+  const Report eager = runWith(program, true, false), lazy = runWith(program, true, true);
+  EXPECT_GT(eager.stats.removed_volume_mm3, 50.0) << program;
+  EXPECT_EQ(lazy.stats.final_volume_mm3, eager.stats.final_volume_mm3);
+  EXPECT_EQ(lazy.mdh.leaves, eager.mdh.leaves);
+  EXPECT_EQ(lazy.mdh.embeddedSamples, eager.mdh.embeddedSamples);
+  EXPECT_EQ(lazy.mdh.directions, eager.mdh.directions);
+  EXPECT_EQ(lazy.overhang.events, eager.overhang.events);
+  EXPECT_EQ(lazy.overhang.area_mm2, eager.overhang.area_mm2);
+  ASSERT_EQ(lazy.stats.tools.size(), eager.stats.tools.size());
+  for (std::size_t i = 0; i < eager.stats.tools.size(); ++i) {
+    EXPECT_GT(eager.stats.tools[i].cutting_time_s, 0.0) << i;
+    EXPECT_EQ(lazy.stats.tools[i].cutting_time_s, eager.stats.tools[i].cutting_time_s) << i;
+    EXPECT_EQ(lazy.stats.tools[i].removed_volume_mm3, eager.stats.tools[i].removed_volume_mm3);
+  }
+  ASSERT_EQ(lazy.collisions.size(), eager.collisions.size());
+  for (std::size_t i = 0; i < eager.collisions.size(); ++i) {
+    EXPECT_EQ(lazy.collisions[i].type, eager.collisions[i].type) << i;
+    EXPECT_EQ(lazy.collisions[i].line, eager.collisions[i].line) << i;
+    EXPECT_EQ(lazy.collisions[i].depth, eager.collisions[i].depth) << i;
   }
 }
 

@@ -1,9 +1,12 @@
-// Lazy crossings (sim/mdh/lazy_crossings.h): batches cut with a shared solid leave
+// Lazy crossings (sim/mdh/lazy_crossings.h): batches and steps cut with a shared solid leave
 // the crossings across z maps to be computed later. Whatever is asked in between and
 // in whatever order, the stock must be the one the eager cuts leave, to the bit: every
 // grid line's intervals, the stats, the volume.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <random>
 #include <thread>
@@ -196,6 +199,62 @@ TEST(LazyCrossingsMixed, RandomMovesBetweenBatchesLeaveTheEagerStock) {
       }
     }
   }
+  expectSameStock(lazy, eager);
+}
+
+// Single turning steps (a 5-axis raster: the axis leans a little more at every step)
+// cut with the solid shared, each from where the last one left the tool held (fresh
+// regions, as mdhd check cuts them), random moves from every side in between (side
+// maps, overhangs, splits) and a line read now and then: the z maps keep the steps'
+// crossings pending, and the stock is the eager one to the bit.
+TEST(LazyCrossingsMixed, SingleTurningStepsLeaveTheEagerStock) {
+  const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
+  auto poses = testing::wavyRows({0, 0, 1}, 40, 0.25);
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const double lean = 0.35 * std::sin(0.05 * static_cast<double>(i));
+    poses[i].axis = glm::normalize(glm::dvec3(lean, 0.5 * lean, 1.0));
+  }
+  Stock lazy(kBox, options(true)), eager(kBox, options(false));
+  testing::RandomToolMoves movesA(3, kBox), movesB(3, kBox);
+  std::int64_t touched[2] = {0, 0};
+  std::vector<geom::Interval> line;
+  for (Stock* s : {&lazy, &eager}) {
+    const int k = s == &lazy ? 0 : 1;
+    testing::RandomToolMoves& moves = k == 0 ? movesA : movesB;
+    std::optional<geom::ToolPose> held;
+    for (std::size_t i = 1; i < poses.size(); ++i) {
+      auto sweep = std::make_shared<const geom::SweptVolume>(
+          geom::SweptVolume::between(ball, poses[i - 1], poses[i], 0, 0.01));
+      std::optional<geom::FreshRegion> fresh;
+      if (held) fresh = geom::freshRegion(ball, *held, sweep->translations());
+      const glm::dvec3 dir = glm::normalize(poses[i - 1].axis + poses[i].axis);
+      touched[k] +=
+          s->cut(std::shared_ptr<const geom::LineSolid>(sweep), dir, fresh ? &*fresh : nullptr)
+              .touched;
+      const geom::Translation& last = sweep->translations().back();
+      held = geom::ToolPose{last.to, last.axis};
+      if (i % 50 == 0) {
+        for (int m = 0; m < 3; ++m) {
+          const testing::ToolMove move = moves.next();
+          s->cut(move.sweep, move.direction);
+        }
+        held.reset();  // the tool left the raster
+      }
+      if (i % 17 == 0) {
+        const GridSpec& g = s->grid();
+        const int iy = static_cast<int>(std::lround(g.toGrid(1, poses[i].tip.y)));
+        const int iz = static_cast<int>(std::lround(g.toGrid(2, poses[i].tip.z)));
+        s->solidIntervals(0, iy, std::clamp(iz, 0, g.cubes[2]), line);
+      }
+    }
+  }
+  EXPECT_LT(eager.volume(), 0.97 * 12 * 12 * 8);
+  EXPECT_GT(touched[1], 100);
+  EXPECT_GE(touched[0], touched[1]);  // a lazy cut is touched wherever it reaches a z map
+  const Stats st = eager.stats();
+  EXPECT_GT(st.overhangEvents, 0);
+  EXPECT_GT(st.directions[4], 0);  // +z maps (where the crossings wait) and side maps
+  EXPECT_GT(st.directions[0] + st.directions[1] + st.directions[2] + st.directions[3], 0);
   expectSameStock(lazy, eager);
 }
 
