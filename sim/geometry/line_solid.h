@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 namespace mdhd::geom {
@@ -25,6 +26,13 @@ class LineSolid {
   virtual ~LineSolid() = default;
   // A box that contains the whole solid.
   virtual Aabb bounds() const = 0;
+  // A box that contains the part of the solid inside `box` (lo > hi on some axis when
+  // there is none). This default clips bounds(); a solid whose box is much larger than
+  // its parts (a leaning tool) may say more.
+  virtual Aabb boundsIn(const Aabb& box) const {
+    const Aabb b = bounds();
+    return {glm::max(b.lo, box.lo), glm::min(b.hi, box.hi)};
+  }
   // Appends to `out` the intervals of coordinate `axis` (0 x, 1 y, 2 z) where the line
   // {p : p[(axis+1)%3] = u, p[(axis+2)%3] = v} lies inside the solid: sorted, disjoint.
   virtual void lineIntervals(int axis, double u, double v, std::vector<Interval>& out) const = 0;

@@ -14,6 +14,7 @@
 #include "sim/geometry/capsule_line.h"
 #include "sim/geometry/pose_interpolation.h"
 #include "sim/geometry/section_solver.h"
+#include "sim/geometry/slab_bounds.h"
 
 namespace mdhd::geom {
 
@@ -299,6 +300,7 @@ void SweptVolume::addTranslation(const ToolPart& part, const std::vector<int>& p
         sp.centre = rp.centre;
         sp.radius = r;
       }
+      sp.maxRadius = rp.maxRadius();
       sp.box = cylinderBox(tr.from, w, rp.z0, rp.z1, rp.maxRadius());
       grow(sp.box, cylinderBox(tr.to, w, rp.z0, rp.z1, rp.maxRadius()));
       grow(body.box, sp.box);
@@ -308,6 +310,28 @@ void SweptVolume::addTranslation(const ToolPart& part, const std::vector<int>& p
     grow(bounds_, body.box);
     bodies_.push_back(body);
   }
+}
+
+Aabb SweptVolume::boundsIn(const Aabb& box) const {
+  Aabb r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY)};
+  const auto misses = [&](const Aabb& b) {
+    for (int k = 0; k < 3; ++k)
+      if (b.hi[k] < box.lo[k] || b.lo[k] > box.hi[k]) return true;
+    return false;
+  };
+  for (const SweptBody& body : bodies_) {
+    if (misses(body.box)) continue;
+    for (int i = body.pieceBegin; i < body.pieceEnd; ++i) {
+      const SweptPiece& p = pieces_[static_cast<std::size_t>(i)];
+      if (misses(p.box)) continue;
+      const Aabb b = sweptPieceBoundsIn(body.tip, body.length * body.dir, body.axis, p.q.z0, p.q.z1,
+                                        p.maxRadius, box);
+      if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) continue;
+      r.lo = glm::min(r.lo, b.lo);
+      r.hi = glm::max(r.hi, b.hi);
+    }
+  }
+  return r;
 }
 
 // One line in the frame of one swept body: a line point at t (relative to the tip's

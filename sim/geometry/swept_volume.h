@@ -58,6 +58,8 @@ class SweptVolume final : public LineSolid {
   SweptVolume(const ToolPart& part, std::span<const ToolPose> poses);
 
   Aabb bounds() const override { return bounds_; }
+  // Piece by piece, each clipped as slab_bounds.h says.
+  Aabb boundsIn(const Aabb& box) const override;
   // Const and allocation-free beyond `out`, so any number of threads may call it.
   // Ends where the line crosses the surface are good to ~1e-12 of the part's size;
   // where it only grazes it (a tangent, a cone's apex) to ~1e-8. Lines that only touch
@@ -108,6 +110,7 @@ class SweptVolume final : public LineSolid {
     // swept, the whole ball's capsule is exact for the body (capsule_line.h).
     bool capsule = false;
     double centre = 0.0, radius = 0.0;  // the ball's centre height above the tip
+    double maxRadius = 0.0;             // the piece's widest disk
   };
   struct SweptBody {
     Aabb box;

@@ -8,9 +8,9 @@
 #include <tuple>
 
 #include "sim/mdh/crossing_splits.h"
+#include "sim/mdh/cut_reach.h"
 #include "sim/mdh/direct_splits.h"
 #include "sim/mdh/fast_cut.h"
-#include "sim/mdh/fresh_reach.h"
 #include "sim/mdh/good_bad_map.h"
 #include "sim/mdh/isolation_splits.h"
 #include "sim/mdh/lazy_crossings.h"
@@ -232,11 +232,11 @@ void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
   split(cell, c, planeFor(c, cell.box), ctx);
 }
 
-// The context for a child of a cell: its reach clipped to the fresh region again.
+// The context for a child of a cell: its reach clipped to the solid and the fresh
+// region again (a child is smaller than its parent: so may be the solid inside it).
 CutContext within(const Cell& child, const CutContext& ctx) {
   CutContext c = ctx;
-  if (ctx.fresh != nullptr)
-    c.reach = freshReach(ctx.grid, child.box.intersect(ctx.reach), ctx.fresh);
+  c.reach = cutReach(ctx.grid, child.box.intersect(ctx.reach), ctx.cache.solid(), ctx.fresh);
   return c;
 }
 

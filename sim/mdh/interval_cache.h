@@ -86,6 +86,7 @@ class IntervalCache {
   // solid's box, and ones another thread is filling, are left to line().
   void fillRow(int axis, int iv, std::span<const int> ius) const;
   // Whether fillRow along `axis` is cheaper per line than line() (LineSolid::rowsPay).
+  const geom::LineSolid& solid() const { return solid_; }
   bool rowsPay(int axis) const { return solid_.rowsPay(axis); }
   // The same lines' intervals as line() would give them, computed for the caller
   // alone (one LineSolid::rowIntervals call), with no slot claimed or filled: for lines

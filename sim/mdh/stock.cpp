@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "sim/mdh/cut_cell.h"
-#include "sim/mdh/fresh_reach.h"
+#include "sim/mdh/cut_reach.h"
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/lazy_crossings.h"
 #include "sim/mdh/rng.h"
@@ -251,7 +251,7 @@ void Stock::reachedBricks(const IntervalCache& cache, const geom::FreshRegion* f
       for (int x = first[0]; x <= last[0]; ++x) {
         const int i = brickIndex({x, y, z});
         if (roots_[i].state == CellState::kEmpty) continue;
-        const GridBox r = freshReach(grid_, roots_[i].box.intersect(t), fresh);
+        const GridBox r = cutReach(grid_, roots_[i].box.intersect(t), cache.solid(), fresh);
         if (r.empty()) continue;  // nothing there the earlier cuts left
         items.push_back(i);
         reach.push_back(r);
