@@ -437,14 +437,13 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
     return;
   }
   ScopeTimer timer(timing_.cut_ms);
-  const geom::FreshRegion* region = fresh ? &*fresh : nullptr;
-  // Whether the motion cuts is asked of the z lines before the cut, as of a batched
-  // step: a cut whose crossings are left pending (any cut into a z map: shared solid
-  // below) cannot say whether it moved one until they are settled.
-  if (!removed) removed = stock_->removesMaterial(step.cutter, region, {}, step.b.pose.tip);
-  // Shared, so that z maps may keep the sweep for their crossings (mdh::Stock::cut).
-  noteCut(stock_->cut(std::make_shared<const geom::SweptVolume>(step.cutter), dir, region),
-          m.pos.line);
+  // Shared, so that z maps may keep the sweep for their crossings (mdh::Stock::cut);
+  // `removed` then says whether it surely removed material (a z map's crossings that
+  // alone moved do not count, lazy or not).
+  const mdh::CutResult r = stock_->cut(std::make_shared<const geom::SweptVolume>(step.cutter), dir,
+                                       fresh ? &*fresh : nullptr);
+  if (r.removed) removed = true;
+  noteCut(r, m.pos.line);
 }
 
 void Simulation::noteCut(const mdh::CutResult& r, int line) {

@@ -61,19 +61,26 @@ bool fastCutCell(Cell& cell, const CutContext& ctx) {
   const ThreeMap& m = *cell.map;
   if (ctx.lazySolid && !ctx.volumes && m.threeWay() && m.axis() == 2) {
     if (!cell.pending) cell.pending = std::make_unique<PendingCuts>();
-    const FastCut r = fastCutLazy(*cell.map, ctx.cache, ctx.reach, ctx.lazySolid, *cell.pending);
+    bool columns = false;
+    const FastCut r =
+        fastCutLazy(*cell.map, ctx.cache, ctx.reach, ctx.lazySolid, *cell.pending, &columns);
     if (r == FastCut::kOverhang) return false;
     if (r == FastCut::kDone) {
       cell.volume = kStaleVolume;
       ctx.counters.touched = true;
+      ctx.counters.removes = ctx.counters.removes || columns;
     }
     return true;
   }
   settlePending(cell, ctx.grid);
   double delta = 0.0;
-  const FastCut r = fastCut(*cell.map, ctx.cache, ctx.reach, ctx.volumes ? &delta : nullptr);
+  bool columns = false;
+  const FastCut r =
+      fastCut(*cell.map, ctx.cache, ctx.reach, ctx.volumes ? &delta : nullptr, &columns);
   if (r == FastCut::kOverhang) return false;
   if (r == FastCut::kDone) {
+    // A z map's moved crossings alone do not count, lazy or not (CutCounters::removes).
+    ctx.counters.removes = ctx.counters.removes || columns || m.axis() != 2;
     if (ctx.volumes)
       setVolume(cell, cell.volume + delta, ctx);
     else
@@ -206,6 +213,7 @@ void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
   g.applyCut(ctx.cache);
   if (fresh) ctx.counters.overhangEvents += 1;
   ctx.counters.touched = true;
+  ctx.counters.removes = true;  // an overhang: the cut removed what held it
   markUnresolved(g, old);
   const GoodBadMap maps[3] = {buildGoodBadMap(g, 0), buildGoodBadMap(g, 1), buildGoodBadMap(g, 2)};
   Direction d;
@@ -266,6 +274,7 @@ bool firstCutElsewhere(Cell& cell, const CutContext& ctx, Direction d, bool fres
       if (fresh) ctx.counters.overhangEvents += 1;
       ctx.counters.resamples += 1;
       ctx.counters.touched = true;
+      ctx.counters.removes = true;
       return true;
     }
   }
@@ -343,6 +352,7 @@ void cutPlanned(Cell& brick, LazyPlan& plan, const CutContext& ctx) {
   cutLazily(*brick.map, ctx.cache, ctx.reach, plan.changes, ctx.lazySolid, *brick.pending);
   brick.volume = kStaleVolume;
   ctx.counters.touched = true;
+  ctx.counters.removes = ctx.counters.removes || !plan.changes.empty();
   normalize(brick);
 #ifndef NDEBUG
   checkCell(brick);

@@ -16,6 +16,9 @@ struct CutCounters {
   std::int64_t forcedVertices = 0;
   double removed = 0.0;  // grid units^3
   bool touched = false;
+  // Surely changed: touched, but in a z map only where a column moved (a lazy cut
+  // cannot tell whether it moved a crossing until it is settled).
+  bool removes = false;
   // Vertices forced cells dropped: the other cells holding them drop them too
   // (Stock::cut, vertex_drops.h).
   std::vector<std::array<int, 3>> dropped;
@@ -28,6 +31,7 @@ struct CutCounters {
     forcedVertices += o.forcedVertices;
     removed += o.removed;
     touched |= o.touched;
+    removes = removes || o.removes;
     dropped.insert(dropped.end(), o.dropped.begin(), o.dropped.end());
   }
 };

@@ -483,9 +483,10 @@ bool cutColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& 
 }  // namespace
 
 FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                double* volumeDelta) {
+                double* volumeDelta, bool* columnsMoved) {
   thread_local Scratch s;
   if (volumeDelta != nullptr) *volumeDelta = 0.0;
+  if (columnsMoved != nullptr) *columnsMoved = false;
   const GridBox region = map.box().intersect(reach);
   if (region.empty()) return FastCut::kUnchanged;
   if (!cutColumns(map, cache, reach, region, s)) return FastCut::kOverhang;
@@ -552,6 +553,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
     delta += columnTerms(0.5);  // a plain heightmap's edge terms are its columns' means
   }
   if (!moved) return FastCut::kUnchanged;
+  if (columnsMoved != nullptr) *columnsMoved = !s.changes.empty();
   for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
   if (volume) *volumeDelta = edgeDelta + delta;
   return FastCut::kDone;
@@ -598,9 +600,11 @@ void cutLazily(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
 }
 
 FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                    const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending) {
+                    const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending,
+                    bool* columnsMoved) {
   thread_local std::vector<ColumnChange> changes;
   const FastCut r = lazyColumns(map, cache, reach, changes);
+  if (columnsMoved != nullptr) *columnsMoved = r == FastCut::kDone && !changes.empty();
   if (r == FastCut::kDone) cutLazily(map, cache, reach, changes, solid, pending);
   return r;
 }

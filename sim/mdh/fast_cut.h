@@ -26,9 +26,10 @@ struct ColumnChange {
 // On kDone the map is updated and *volumeDelta (grid units^3, unless null:
 // the edge integrals are then skipped) is its change; on kOverhang the map is
 // untouched. `reach` (inside cache.touched()): the vertices the cut can
-// change, and the edges between them.
+// change, and the edges between them. *columnsMoved (unless null): whether a
+// column moved (kDone may move crossings only).
 FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                double* volumeDelta);
+                double* volumeDelta, bool* columnsMoved = nullptr);
 
 // The same cut into a 3-way z map with its crossings left pending (lazy_crossings.h):
 // the crossings the cut leaves in place are brought up to the cuts before it as
@@ -37,7 +38,8 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
 // (whether a crossing moves is known only once it is settled); on kOverhang neither
 // map nor `pending` changed.
 FastCut fastCutLazy(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
-                    const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending);
+                    const std::shared_ptr<const geom::LineSolid>& solid, PendingCuts& pending,
+                    bool* columnsMoved = nullptr);
 
 // fastCutLazy in two halves, for a caller that must know that every cell takes the
 // cut before it changes any (Stock::cutIfFast, without copies to undo): the columns'

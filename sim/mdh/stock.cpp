@@ -129,6 +129,7 @@ CutResult Stock::result(const CutCounters& step) const {
   const double h3 = grid_.h * grid_.h * grid_.h;
   result.removed_volume = options_.step_volumes ? step.removed * h3 : 0.0;
   result.touched = step.touched;
+  result.removed = step.removes;
   result.overhang_events = step.overhangEvents;
   result.overhang = step.overhangEvents > 0;
   for (auto s : step.splits) result.splits += s;

@@ -54,7 +54,10 @@ struct StockOptions {
 struct CutResult {
   double removed_volume = 0.0;  // mm^3, this step (0 unless StockOptions::step_volumes)
   bool touched = false;         // any material changed (or may have: a lazy cut into a z map)
-  bool overhang = false;        // some cell needed a new direction or a split
+  // Material surely changed: as touched, but a z map counts only where a column moved
+  // (with lazy crossings or without, so the answer is the same either way).
+  bool removed = false;
+  bool overhang = false;  // some cell needed a new direction or a split
   std::int64_t overhang_events = 0;
   std::int64_t splits = 0;
 };

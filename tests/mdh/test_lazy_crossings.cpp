@@ -205,8 +205,9 @@ TEST(LazyCrossingsMixed, RandomMovesBetweenBatchesLeaveTheEagerStock) {
 // Single turning steps (a 5-axis raster: the axis leans a little more at every step)
 // cut with the solid shared, each from where the last one left the tool held (fresh
 // regions, as mdhd check cuts them), random moves from every side in between (side
-// maps, overhangs, splits) and a line read now and then: the z maps keep the steps'
-// crossings pending, and the stock is the eager one to the bit.
+// maps, overhangs, splits), a step now and then cut twice and a line read now and
+// then: the z maps keep the steps' crossings pending, the stock is the eager one to
+// the bit, and so is every step's CutResult::removed.
 TEST(LazyCrossingsMixed, SingleTurningStepsLeaveTheEagerStock) {
   const geom::ToolPart ball = testing::cutterPart(geom::ToolShape::kBall, 3.0);
   auto poses = testing::wavyRows({0, 0, 1}, 40, 0.25);
@@ -217,6 +218,7 @@ TEST(LazyCrossingsMixed, SingleTurningStepsLeaveTheEagerStock) {
   Stock lazy(kBox, options(true)), eager(kBox, options(false));
   testing::RandomToolMoves movesA(3, kBox), movesB(3, kBox);
   std::int64_t touched[2] = {0, 0};
+  std::vector<bool> removed[2];
   std::vector<geom::Interval> line;
   for (Stock* s : {&lazy, &eager}) {
     const int k = s == &lazy ? 0 : 1;
@@ -228,9 +230,12 @@ TEST(LazyCrossingsMixed, SingleTurningStepsLeaveTheEagerStock) {
       std::optional<geom::FreshRegion> fresh;
       if (held) fresh = geom::freshRegion(ball, *held, sweep->translations());
       const glm::dvec3 dir = glm::normalize(poses[i - 1].axis + poses[i].axis);
-      touched[k] +=
-          s->cut(std::shared_ptr<const geom::LineSolid>(sweep), dir, fresh ? &*fresh : nullptr)
-              .touched;
+      const CutResult r =
+          s->cut(std::shared_ptr<const geom::LineSolid>(sweep), dir, fresh ? &*fresh : nullptr);
+      touched[k] += r.touched;
+      removed[k].push_back(r.removed);
+      if (i % 5 == 0)  // the same step again: it reaches the maps and removes nothing
+        removed[k].push_back(s->cut(std::shared_ptr<const geom::LineSolid>(sweep), dir).removed);
       const geom::Translation& last = sweep->translations().back();
       held = geom::ToolPose{last.to, last.axis};
       if (i % 50 == 0) {
@@ -251,6 +256,10 @@ TEST(LazyCrossingsMixed, SingleTurningStepsLeaveTheEagerStock) {
   EXPECT_LT(eager.volume(), 0.97 * 12 * 12 * 8);
   EXPECT_GT(touched[1], 100);
   EXPECT_GE(touched[0], touched[1]);  // a lazy cut is touched wherever it reaches a z map
+  // Whether a step surely removed material is the same answer either way.
+  EXPECT_EQ(removed[0], removed[1]);
+  EXPECT_GT(std::count(removed[1].begin(), removed[1].end(), true), 100);
+  EXPECT_GT(std::count(removed[1].begin(), removed[1].end(), false), 20);
   const Stats st = eager.stats();
   EXPECT_GT(st.overhangEvents, 0);
   EXPECT_GT(st.directions[4], 0);  // +z maps (where the crossings wait) and side maps
