@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "sim/mdh/lazy_crossings.h"
@@ -34,6 +35,44 @@ struct Scratch {
   std::vector<int> lineU, lineV;          // the x or y lines the family loop will ask for
   std::vector<std::size_t> movedColumns;  // cutLazily: the changes' column indices
 };
+
+// The vertex rule (vertex_rule.h) for the vertices of `region` in an x or y map, each
+// z line looked up once: a side map's column meets a new z line at every vertex, the
+// column beside it the same lines again. Lines are asked for only when a vertex on
+// them is (the same lines the rule vertex by vertex would fill).
+class SideVertexRule {
+ public:
+  SideVertexRule(const IntervalCache& cache, const GridBox& region) : cache_(cache), r_(region) {
+    nx_ = r_.points(0);
+    ny_ = r_.points(1);
+    nz_ = r_.points(2);
+    done_.assign(static_cast<std::size_t>(nx_) * ny_, 0);
+    gone_.resize(static_cast<std::size_t>(nx_) * ny_ * nz_);
+  }
+  bool removes(const std::array<int, 3>& p) {
+    const std::size_t xy = static_cast<std::size_t>(p[1] - r_.lo[1]) * nx_ + (p[0] - r_.lo[0]);
+    std::uint8_t* marks = gone_.data() + xy * nz_;
+    if (!done_[xy]) {
+      done_[xy] = 1;
+      std::fill(marks, marks + nz_, 0);
+      // The integers strictly inside a span (strictlyInside), within the region.
+      for (const Span& t : cache_.line(2, p[0], p[1])) {
+        const double first = std::max(std::floor(t.lo) + 1.0, double(r_.lo[2]));
+        const double last = std::min(std::ceil(t.hi) - 1.0, double(r_.hi[2]));
+        for (double k = first; k <= last; k += 1.0) marks[static_cast<int>(k) - r_.lo[2]] = 1;
+      }
+    }
+    return marks[p[2] - r_.lo[2]] != 0;
+  }
+
+ private:
+  const IntervalCache& cache_;
+  GridBox r_;
+  int nx_ = 0, ny_ = 0, nz_ = 0;
+  thread_local static std::vector<std::uint8_t> done_, gone_;
+};
+
+thread_local std::vector<std::uint8_t> SideVertexRule::done_, SideVertexRule::gone_;
 
 // The parent heights and what solid counts need, held in locals: the loops
 // below store into rows and scratch vectors, after which anything read through
@@ -165,7 +204,7 @@ bool cutZColumn(const ThreeMap& m, double h, std::span<const Span> tool, Scratch
 // them (vertex_rule.h), the new height is the crossing of the top edge as
 // every cell holding that edge computes it.
 bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
-                   const std::array<int, 3>& base, const IntervalCache& cache, const GridBox& reach,
+                   const std::array<int, 3>& base, SideVertexRule& rule, const GridBox& reach,
                    double& out) {
   const int a = m.axis(), n = m.levels(), lo = m.box().lo[a];
   const bool up = m.direction().sign > 0;
@@ -190,7 +229,7 @@ bool cutSideColumn(const ThreeMap& m, double h, std::span<const Span> tool,
   for (int i = 0; i <= c1 - c0; ++i) {
     const int k = up ? c0 + i : c1 - i;
     p[a] = lo + k;
-    if (toolRemovesVertex(cache, p)) {
+    if (rule.removes(p)) {
       if (first < 0) first = k;
     } else if (first >= 0) {
       return false;
@@ -432,6 +471,8 @@ bool cutColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& 
   // columns on its sides, which a neighbour computes again, to the same bits): it
   // computes them itself, without the shared slots' claims and stores.
   const bool ownLines = rowFill && box.lo[a] == 0 && box.hi[a] == cache.grid().cubes[a];
+  std::optional<SideVertexRule> rule;
+  if (a != 2) rule.emplace(cache, region);
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv) {
     if (rowFill) {
       // The row's lines that the loop below will ask for, filled body by body in one
@@ -472,7 +513,7 @@ bool cutColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& 
       base[u] = cu;
       base[v] = cv;
       const bool ok = a == 2 ? cutZColumn(map, h, tool, s, nh)
-                             : cutSideColumn(map, h, tool, base, cache, reach, nh);
+                             : cutSideColumn(map, h, tool, base, *rule, reach, nh);
       if (!ok) return false;
       if (!(nh == h)) s.changes.push_back({iu, iv, nh});
     }
