@@ -232,6 +232,10 @@ void SweptVolume::build(const ToolPart& part, const std::vector<Translation>& mo
         !bodies_.empty() && std::all_of(bodies_.begin(), bodies_.end(), [&](const SweptBody& b) {
           return b.alongAxis == a && profiles_[b.profile].rises.size() <= kRowRises;
         });
+  leans_ = std::any_of(bodies_.begin(), bodies_.end(), [](const SweptBody& b) {
+    const glm::dvec3 a = glm::abs(b.axis);
+    return !(a.x == 1.0 || a.y == 1.0 || a.z == 1.0);
+  });
   for (int a = 0; a < 3; ++a)
     rowCross_[a] =
         !bodies_.empty() && std::all_of(bodies_.begin(), bodies_.end(),
@@ -313,6 +317,7 @@ void SweptVolume::addTranslation(const ToolPart& part, const std::vector<int>& p
 }
 
 Aabb SweptVolume::boundsIn(const Aabb& box) const {
+  if (!leans_) return LineSolid::boundsIn(box);
   Aabb r{glm::dvec3(INFINITY), glm::dvec3(-INFINITY)};
   const auto misses = [&](const Aabb& b) {
     for (int k = 0; k < 3; ++k)

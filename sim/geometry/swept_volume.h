@@ -58,7 +58,8 @@ class SweptVolume final : public LineSolid {
   SweptVolume(const ToolPart& part, std::span<const ToolPose> poses);
 
   Aabb bounds() const override { return bounds_; }
-  // Piece by piece, each clipped as slab_bounds.h says.
+  // Piece by piece, each clipped as slab_bounds.h says, where some body leans (its
+  // axis on no grid axis); otherwise the box clipped, which is then as tight.
   Aabb boundsIn(const Aabb& box) const override;
   // Const and allocation-free beyond `out`, so any number of threads may call it.
   // Ends where the line crosses the surface are good to ~1e-12 of the part's size;
@@ -159,6 +160,7 @@ class SweptVolume final : public LineSolid {
   double errorBound_ = 0.0;
   bool rowKernel_[3] = {false, false, false};  // every body solved by axialExtentRow on axis a
   bool rowCross_[3] = {false, false, false};   // every body square to axis a (crossExtentRow)
+  bool leans_ = false;                         // some body's axis on no grid axis
 };
 
 // How many equal segments SweptVolume::between uses for these arguments.
