@@ -210,7 +210,7 @@ void split(Cell& cell, const SplitCandidate& c, int plane, const CutContext& ctx
 void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
   const Direction old = cell.map->direction();
   SampleGrid g = SampleGrid::decode(*cell.map, cell.box);
-  g.applyCut(ctx.cache);
+  g.applyCut(ctx.cache, &ctx.reach);
   if (fresh) ctx.counters.overhangEvents += 1;
   ctx.counters.touched = true;
   ctx.counters.removes = true;  // an overhang: the cut removed what held it

@@ -80,10 +80,11 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
   return g;
 }
 
-void SampleGrid::applyCut(const IntervalCache& cache) {
+void SampleGrid::applyCut(const IntervalCache& cache, const GridBox* within) {
   for (auto& s : state_) s = static_cast<std::uint8_t>((s & kSolid) ? (kSolid | kWasSolid) : 0);
   // Vertex states: the rule every cell applies (vertex_rule.h).
-  const GridBox reach = box_.intersect(cache.touched());
+  GridBox reach = box_.intersect(cache.touched());
+  if (within != nullptr) reach = reach.intersect(*within);
   if (!reach.empty())
     for (int y = reach.lo[1]; y <= reach.hi[1]; ++y)
       for (int x = reach.lo[0]; x <= reach.hi[0]; ++x) {
@@ -101,8 +102,10 @@ void SampleGrid::applyCut(const IntervalCache& cache) {
   for (int x = 0; x < 3; ++x) {
     const int xu = axisU(x), xv = axisV(x);
     const std::size_t sx = stride(x);
-    for (int cv = box_.lo[xv]; cv <= box_.hi[xv]; ++cv) {
-      for (int cu = box_.lo[xu]; cu <= box_.hi[xu]; ++cu) {
+    // A line beside the reach: no vertex on it changed and the tool misses it here.
+    if (reach.empty()) break;
+    for (int cv = reach.lo[xv]; cv <= reach.hi[xv]; ++cv) {
+      for (int cu = reach.lo[xu]; cu <= reach.hi[xu]; ++cu) {
         const auto tool = cache.line(x, cu, cv);
         const std::size_t i0 = index(vertex(x, box_.lo[x], cu, cv));
         for (int k = 0; k + 1 < n_[x]; ++k) {

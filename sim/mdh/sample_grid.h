@@ -46,7 +46,10 @@ class SampleGrid {
 
   // Subtracts the step's tool: vertex states by vertex_rule.h, then every
   // edge of all three families gets its crossing from edgeCrossingAfterCut.
-  void applyCut(const IntervalCache& cache);
+  // `reach` (when given; the whole box otherwise): the vertices the cut can change
+  // and the edges between them (CutContext::reach): lines outside it keep theirs
+  // without asking the solid.
+  void applyCut(const IntervalCache& cache, const GridBox* reach = nullptr);
   bool changed() const { return changed_; }
 
   // Whether every line along d.axis is solid-then-empty for d (a heightmap can hold it).
