@@ -39,13 +39,20 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
   SampleGrid g(sub);
   const int a = map.axis(), u = map.uAxis(), v = map.vAxis();
   const GridBox& box = map.box();
+  // Column by column, walked with a stride (states start empty, crossings NaN): one
+  // test a vertex, the crossing where the state changes.
+  const std::size_t along = g.stride(a);
   for (int cv = sub.lo[v]; cv <= sub.hi[v]; ++cv) {
     for (int cu = sub.lo[u]; cu <= sub.hi[u]; ++cu) {
       const double h = map.height(cu - box.lo[u], cv - box.lo[v]);
-      for (int k = sub.lo[a]; k <= sub.hi[a]; ++k) {
-        const std::size_t i = g.index(vertex(a, k, cu, cv));
-        g.state_[i] = map.solidAt(h, k) ? kSolid : 0;
-        if (k < sub.hi[a] && map.solidAt(h, k) != map.solidAt(h, k + 1)) g.cross_[a][i] = h;
+      std::size_t i = g.index(vertex(a, sub.lo[a], cu, cv));
+      bool before = map.solidAt(h, sub.lo[a]);
+      for (int k = sub.lo[a]; k <= sub.hi[a]; ++k, i += along) {
+        if (before) g.state_[i] = kSolid;
+        if (k == sub.hi[a]) break;
+        const bool next = map.solidAt(h, k + 1);
+        if (next != before) g.cross_[a][i] = h;
+        before = next;
       }
     }
   }
