@@ -88,7 +88,9 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
 }
 
 void SampleGrid::applyCut(const IntervalCache& cache, const GridBox* within) {
-  for (auto& s : state_) s = static_cast<std::uint8_t>((s & kSolid) ? (kSolid | kWasSolid) : 0);
+  // Branch-free (a cell holds millions of vertices): solid -> solid and was solid.
+  static_assert(kSolid == 1, "the mask below takes kSolid as the lowest bit");
+  for (auto& s : state_) s = static_cast<std::uint8_t>((s & kSolid) * (kSolid | kWasSolid));
   // Vertex states: the rule every cell applies (vertex_rule.h).
   GridBox reach = box_.intersect(cache.touched());
   if (within != nullptr) reach = reach.intersect(*within);
@@ -102,8 +104,14 @@ void SampleGrid::applyCut(const IntervalCache& cache, const GridBox* within) {
           if ((s & kSolid) && toolRemovesVertex(zLine, z)) s &= static_cast<std::uint8_t>(~kSolid);
         }
       }
-  for (std::size_t i = 0; i < state_.size(); ++i)
-    if (bool(state_[i] & kSolid) != bool(state_[i] & kWasSolid)) changed_ = true;
+  // Only vertices in the reach can have changed.
+  if (!reach.empty())
+    for (int z = reach.lo[2]; z <= reach.hi[2] && !changed_; ++z)
+      for (int y = reach.lo[1]; y <= reach.hi[1]; ++y) {
+        const std::size_t i0 = index(reach.lo[0], y, z);
+        for (std::size_t i = i0; i <= i0 + (reach.hi[0] - reach.lo[0]); ++i)
+          if (bool(state_[i] & kSolid) != bool(state_[i] & kWasSolid)) changed_ = true;
+      }
   // Crossings, edge by edge in all three families (the same function every
   // cell holding an edge uses).
   for (int x = 0; x < 3; ++x) {
