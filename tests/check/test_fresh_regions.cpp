@@ -91,6 +91,16 @@ Report runWith(const std::string& program, bool fresh, bool lazyCrossings = true
   return rig::run(std::move(s), program);
 }
 
+// The same collisions, to the bit: type, line and depth.
+void expectSameCollisions(const Report& got, const Report& want) {
+  ASSERT_EQ(got.collisions.size(), want.collisions.size());
+  for (std::size_t i = 0; i < want.collisions.size(); ++i) {
+    EXPECT_EQ(got.collisions[i].type, want.collisions[i].type) << i;
+    EXPECT_EQ(got.collisions[i].line, want.collisions[i].line) << i;
+    EXPECT_EQ(got.collisions[i].depth, want.collisions[i].depth) << i;
+  }
+}
+
 class FreshRegions : public ::testing::TestWithParam<std::uint32_t> {};
 
 TEST_P(FreshRegions, RandomFiveAxisProgramsGiveTheReportOfWholeCuts) {
@@ -101,17 +111,12 @@ TEST_P(FreshRegions, RandomFiveAxisProgramsGiveTheReportOfWholeCuts) {
   EXPECT_EQ(fresh.mdh.leaves, whole.mdh.leaves);
   EXPECT_EQ(fresh.mdh.cells, whole.mdh.cells);
   EXPECT_EQ(fresh.overhang.events, whole.overhang.events);
-  ASSERT_EQ(fresh.collisions.size(), whole.collisions.size());
-  for (std::size_t i = 0; i < whole.collisions.size(); ++i) {
-    EXPECT_EQ(fresh.collisions[i].type, whole.collisions[i].type) << i;
-    EXPECT_EQ(fresh.collisions[i].line, whole.collisions[i].line) << i;
-    EXPECT_EQ(fresh.collisions[i].depth, whole.collisions[i].depth) << i;
-  }
+  expectSameCollisions(fresh, whole);
 }
 
 // The turning steps are cut one by one with their crossings across z maps left
 // pending (mdh::Stock::cut with a shared solid): the report of eager cuts to the bit,
-// the motions' cutting times (asked of the z lines before each cut) included.
+// the motions' cutting times (from CutResult::removed) included.
 TEST_P(FreshRegions, RandomFiveAxisProgramsGiveTheReportOfEagerCrossings) {
   const std::string program = randomFiveAxisProgram(GetParam());
   const Report eager = runWith(program, true, false), lazy = runWith(program, true, true);
@@ -128,12 +133,7 @@ TEST_P(FreshRegions, RandomFiveAxisProgramsGiveTheReportOfEagerCrossings) {
     EXPECT_EQ(lazy.stats.tools[i].cutting_time_s, eager.stats.tools[i].cutting_time_s) << i;
     EXPECT_EQ(lazy.stats.tools[i].removed_volume_mm3, eager.stats.tools[i].removed_volume_mm3);
   }
-  ASSERT_EQ(lazy.collisions.size(), eager.collisions.size());
-  for (std::size_t i = 0; i < eager.collisions.size(); ++i) {
-    EXPECT_EQ(lazy.collisions[i].type, eager.collisions[i].type) << i;
-    EXPECT_EQ(lazy.collisions[i].line, eager.collisions[i].line) << i;
-    EXPECT_EQ(lazy.collisions[i].depth, eager.collisions[i].depth) << i;
-  }
+  expectSameCollisions(lazy, eager);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, FreshRegions, ::testing::Values(1u, 2u, 3u, 4u));
