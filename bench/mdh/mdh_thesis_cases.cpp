@@ -5,12 +5,14 @@
 // ruleset runs with seeds 1..N and prints min and (upper) median.
 //   mdh_thesis_cases [--density 100] [--seeds 3] [--rulesets few|table66|all]
 //                    [--ruleset FEFS-FFS,CTD,SPT,RS]... [--cases CS,D1,...]
-//                    [--cuts-per-motion 1] [--degrees-per-motion 5] [--smoke]
+//                    [--cuts-per-motion 1] [--degrees-per-motion 5] [--two-sided] [--smoke]
 // --ruleset R (repeatable) runs the named rulesets instead of --rulesets.
 // --cuts-per-motion k: each motion cut as k swept pieces (10 = the thesis's
 // in-between steps as separate cuts; 1 = one swept volume per motion).
 // --degrees-per-motion a: the turn of one motion of D1, D2, DS1, DS2 (lost with
 // the thesis's figures; a calibration knob like DS's pitch).
+// --two-sided: two-sided 3-maps (StockOptions::two_sided, thesis 7.4): a sign
+// conflict alone splits no cell.
 // --smoke: density 25, one seed, three rulesets; exits 1 if a result is wrong.
 #include <algorithm>
 #include <cmath>
@@ -71,8 +73,10 @@ Prepared prepare(bench::ThesisCase c, int cutsPerMotion) {
   return p;
 }
 
-Run run(const Prepared& p, const std::vector<Rule>& rules, double density, std::uint64_t seed) {
+Run run(const Prepared& p, const std::vector<Rule>& rules, double density, std::uint64_t seed,
+        bool twoSided) {
   StockOptions o;
+  o.two_sided = twoSided;
   o.density = density;
   o.ruleset = rules;
   o.brick = 0;
@@ -126,6 +130,7 @@ int main(int argc, char** argv) {
   std::string rulesetChoice = "few", caseFilter;
   std::vector<std::string> named;
   bool smoke = false;
+  bool twoSided = false;
   int cutsPerMotion = 1;
   double donutDegrees = 5;
   for (int i = 1; i < argc; ++i) {
@@ -147,6 +152,8 @@ int main(int argc, char** argv) {
       donutDegrees = std::atof(next), ++i;
     else if (a == "--smoke")
       smoke = true;
+    else if (a == "--two-sided")
+      twoSided = true;
     else {
       std::fprintf(stderr, "mdh_thesis_cases: unknown argument '%s'\n", a.c_str());
       return 2;
@@ -207,7 +214,8 @@ int main(int argc, char** argv) {
     for (std::size_t c = 0; c < cases.size(); ++c) {
       Runs& runs = results[r][c];
       for (int s = 1; s <= seeds; ++s) {
-        runs.push_back(run(cases[c], *parseRules(rulesets[r]), density, std::uint64_t(s)));
+        runs.push_back(
+            run(cases[c], *parseRules(rulesets[r]), density, std::uint64_t(s), twoSided));
         const Run& x = runs.back();
         if (!(x.volume > 0 && x.volume < x.boxVolume) || !std::isfinite(x.volume)) {
           std::printf("FAIL %s %s: volume %g of %g\n", cases[c].c.name.c_str(), rulesets[r].c_str(),

@@ -44,11 +44,14 @@ std::optional<double> slope(const std::span<const double>* before,
   return std::nullopt;
 }
 
-// The box of grid vertices that leaves other than +z heightmaps cover, grown by one.
+// The box of grid vertices that leaves other than +z heightmaps (two-sided ones
+// included) cover, grown by one.
 std::optional<mdh::GridBox> overhangRegion(const mdh::Stock& stock) {
   std::optional<mdh::GridBox> box;
   stock.forEachLeaf([&](const mdh::LeafView& leaf) {
-    if (leaf.map == nullptr || leaf.map->direction() == mdh::Direction{2, 1}) return;
+    if (leaf.map == nullptr ||
+        (leaf.map->direction() == mdh::Direction{2, 1} && !leaf.map->hasFlips()))
+      return;
     if (!box) {
       box = leaf.box;
       return;

@@ -59,6 +59,7 @@ bool fastCutCell(Cell& cell, const CutContext& ctx) {
   // Lazy crossings need the cells' volumes stale anyway (no per-step volumes) and a
   // z map, whose z lines (the probes') are its parent heights alone.
   const ThreeMap& m = *cell.map;
+  if (m.hasFlips()) return false;  // two-sided columns: the slow path's
   if (ctx.lazySolid && !ctx.volumes && m.threeWay() && m.axis() == 2) {
     if (!cell.pending) cell.pending = std::make_unique<PendingCuts>();
     bool columns = false;
@@ -91,10 +92,11 @@ bool fastCutCell(Cell& cell, const CutContext& ctx) {
 }
 
 // Picks, among the valid directions, the one closest to the tool's axis.
-bool validDirection(const GoodBadMap (&maps)[3], const glm::dvec3& t, Direction& out) {
+bool validDirection(const GoodBadMap (&maps)[3], const glm::dvec3& t, bool twoSided,
+                    Direction& out) {
   bool found = false;
   for (int a = 0; a < 3; ++a) {
-    if (!maps[a].valid()) continue;
+    if (!maps[a].valid(twoSided)) continue;
     if (!found || std::abs(t[a]) > std::abs(t[out.axis])) out = maps[a].validDirection();
     found = true;
   }
@@ -211,26 +213,34 @@ void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
   const Direction old = cell.map->direction();
   SampleGrid g = SampleGrid::decode(*cell.map, cell.box);
   g.applyCut(ctx.cache, &ctx.reach);
-  if (fresh) ctx.counters.overhangEvents += 1;
+  // A two-sided map comes here for every cut that reaches it (fastCutCell): only a
+  // new direction or a split is an overhang event there.
+  const bool twoSidedCell = cell.map->hasFlips();
+  if (twoSidedCell && !g.changed()) return;
+  ctx.counters.slowCuts += 1;
   ctx.counters.touched = true;
-  ctx.counters.removes = true;  // an overhang: the cut removed what held it
-  markUnresolved(g, old);
+  ctx.counters.removes = true;  // an overhang (or a two-sided cell's cut): material went
+  markUnresolved(g, old, cell.map.get(), ctx.twoSided);
   const GoodBadMap maps[3] = {buildGoodBadMap(g, 0), buildGoodBadMap(g, 1), buildGoodBadMap(g, 2)};
   Direction d;
-  if (validDirection(maps, ctx.toolDirection, d)) {
-    *cell.map = encodeMap(g, d, ctx.threeWay);
+  if (validDirection(maps, ctx.toolDirection, ctx.twoSided, d)) {
+    *cell.map = encodeMap(g, d, ctx.threeWay, ctx.twoSided);
     setVolume(cell, cell.map->volume(), ctx);
-    ctx.counters.resamples += 1;
+    if (!(twoSidedCell && d == old)) {
+      if (fresh) ctx.counters.overhangEvents += 1;
+      ctx.counters.resamples += 1;
+    }
     return;
   }
+  if (fresh) ctx.counters.overhangEvents += 1;
   const auto candidates = splitCandidates(g, maps, old.axis, cell.box);
   if (candidates.empty()) {
     forceFunctional(g, ctx.toolDirection, ctx);
     const GoodBadMap forced[3] = {buildGoodBadMap(g, 0), buildGoodBadMap(g, 1),
                                   buildGoodBadMap(g, 2)};
-    if (!validDirection(forced, ctx.toolDirection, d))
+    if (!validDirection(forced, ctx.toolDirection, ctx.twoSided, d))
       throw std::logic_error("mdh: forcing a one-cube cell functional failed");
-    *cell.map = encodeMap(g, d, ctx.threeWay);
+    *cell.map = encodeMap(g, d, ctx.threeWay, ctx.twoSided);
     setVolume(cell, cell.map->volume(), ctx);
     return;
   }
@@ -325,7 +335,7 @@ LazyPlan planLazyCut(const Cell& brick, const CutContext& ctx) {
     if (d.axis != 2) return plan;
     plan.map = std::make_unique<ThreeMap>(brick.box, d, ctx.threeWay);
     map = plan.map.get();
-  } else if (!map->threeWay() || map->axis() != 2) {
+  } else if (!map->threeWay() || map->axis() != 2 || map->hasFlips()) {
     return plan;
   }
   switch (lazyColumns(*map, ctx.cache, ctx.reach, plan.changes)) {
@@ -388,8 +398,11 @@ void checkMap(const Cell& cell) {
   for (int iv = 0; iv < m.columnsV(); ++iv)
     for (int iu = 0; iu < m.columnsU(); ++iu) {
       const double h = m.height(iu, iv);
-      const bool empty = m.direction().sign > 0 ? h == -kInf : h == kInf;
+      const bool empty = m.columnUp(iu, iv) ? h == -kInf : h == kInf;
       if (!empty && !(h >= lo && h <= hi)) fail(cell, "parent height outside the cell");
+      const int n = m.columnCount(iu, iv);
+      if (m.flipped(iu, iv) && (n == 0 || n == m.levels()))
+        fail(cell, "a full or empty column is flipped");
     }
   if (!std::isnan(cell.volume) &&
       std::abs(m.volume() - cell.volume) > 1e-6 * (1.0 + cell.boxVolume()))
@@ -400,8 +413,7 @@ void checkMap(const Cell& cell) {
       std::size_t expected = 0;
       const auto& row = m.row(family, r);
       for (int e = 0; e < m.edgesInRow(family); ++e) {
-        int first = 0, count = 0;
-        m.straddle(m.rowHeight(family, r, e), m.rowHeight(family, r, e + 1), first, count);
+        const int count = m.straddleEdge(family, r, e).total();
         const int base = cell.box.lo[family == 0 ? m.uAxis() : m.vAxis()] + e;
         for (int i = 0; i < count; ++i) {
           if (expected + i >= row.size()) fail(cell, "embedded row too short");

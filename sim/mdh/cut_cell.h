@@ -31,6 +31,7 @@ struct CutContext {
   const std::vector<Rule>& rules;
   bool volumes = true;  // keep cells' volumes (and counters.removed) up to date
   bool threeWay = true;
+  bool twoSided = false;  // StockOptions::two_sided
   glm::dvec3 toolDirection{0.0, 0.0, 1.0};
   double toolRadius = 0.0;  // grid units
   std::uint64_t seed = 1;

@@ -14,6 +14,9 @@ struct CutCounters {
   std::int64_t resamples = 0;                      // ... and took a new direction without splitting
   std::int64_t forcedCells = 0;  // unsplittable cells made functional by dropping vertices
   std::int64_t forcedVertices = 0;
+  // Leaves that took the slow path (unpacked): overhang events, and two-sided cells'
+  // cuts that kept their direction (no event).
+  std::int64_t slowCuts = 0;
   double removed = 0.0;  // grid units^3
   bool touched = false;
   // Surely changed: touched, but in a z map only where a column moved (a lazy cut
@@ -29,6 +32,7 @@ struct CutCounters {
     resamples += o.resamples;
     forcedCells += o.forcedCells;
     forcedVertices += o.forcedVertices;
+    slowCuts += o.slowCuts;
     removed += o.removed;
     touched |= o.touched;
     removes = removes || o.removes;

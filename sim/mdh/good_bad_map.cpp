@@ -31,14 +31,18 @@ bool nextToSurface(const SampleGrid& g, std::size_t i) {
 
 }  // namespace
 
-void markUnresolved(SampleGrid& g, Direction old) {
-  const int a = old.axis, u = axisU(a), v = axisV(a), n = g.size(a);
+void markUnresolved(SampleGrid& g, Direction dir, const ThreeMap* oldMap, bool twoSided) {
+  const int a = dir.axis, u = axisU(a), v = axisV(a), n = g.size(a);
   const std::size_t st = g.stride(a);
   const GridBox& box = g.box();
+  const bool flips = oldMap != nullptr && oldMap->hasFlips();
   std::vector<int> changes;
   for (int cv = box.lo[v]; cv <= box.hi[v]; ++cv) {
     for (int cu = box.lo[u]; cu <= box.hi[u]; ++cu) {
+      Direction old = dir;
+      if (flips && oldMap->flipped(cu - box.lo[u], cv - box.lo[v])) old.sign = -old.sign;
       if (g.columnValid(old, cu, cv)) continue;
+      if (twoSided && g.columnValid(Direction{a, -old.sign}, cu, cv)) continue;
       const std::size_t i0 = lineStart(g, a, cu, cv);
       changes.clear();
       for (int k = 0; k + 1 < n; ++k)
@@ -99,6 +103,8 @@ GoodBadMap buildGoodBadMap(const SampleGrid& g, int axis) {
       m.hasBad |= t == Pixel::kBad;
       m.hasPositive |= t == Pixel::kPositive;
       m.hasNegative |= t == Pixel::kNegative;
+      m.positives += t == Pixel::kPositive;
+      m.negatives += t == Pixel::kNegative;
       m.hasUnresolvedBad |= t == Pixel::kBad && unresolved;
     }
   }

@@ -21,18 +21,26 @@ struct GoodBadMap {
   std::vector<Pixel> type;
   std::vector<std::uint8_t> unresolved;
   bool hasBad = false, hasPositive = false, hasNegative = false, hasUnresolvedBad = false;
+  int positives = 0, negatives = 0;
 
   std::size_t at(int ip, int iq) const { return static_cast<std::size_t>(iq) * np + ip; }
-  bool valid() const { return !hasBad && !(hasPositive && hasNegative); }
-  Direction validDirection() const { return Direction{axis, hasNegative ? -1 : 1}; }
+  // A two-sided map (three_map.h) holds conflicting signs: only bad pixels count.
+  bool valid(bool twoSided = false) const {
+    return !hasBad && (twoSided || !(hasPositive && hasNegative));
+  }
+  // The side most lines take (a two-sided map flips the others).
+  Direction validDirection() const { return Direction{axis, negatives > positives ? -1 : 1}; }
 };
 
 // Marks the vertices next to the part of the new surface the old direction
 // cannot hold (thesis 3.2: the unresolved surface), on every column that has
 // become invalid for `old`: between the first and last crossing it cannot
 // hold, those with a crossing on one of their edges. A pixel is unresolved
-// when one of its ray's own crossings has a marked end.
-void markUnresolved(SampleGrid& g, Direction old);
+// when one of its ray's own crossings has a marked end. `oldMap` (its box that
+// of g, direction `old`): a two-sided map's columns, each on its own side.
+// `twoSided`: a column either side holds is resolved (the map flips it).
+void markUnresolved(SampleGrid& g, Direction old, const ThreeMap* oldMap = nullptr,
+                    bool twoSided = false);
 
 GoodBadMap buildGoodBadMap(const SampleGrid& g, int axis);
 

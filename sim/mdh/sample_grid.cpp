@@ -44,13 +44,16 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
   const std::size_t along = g.stride(a);
   for (int cv = sub.lo[v]; cv <= sub.hi[v]; ++cv) {
     for (int cu = sub.lo[u]; cu <= sub.hi[u]; ++cu) {
-      const double h = map.height(cu - box.lo[u], cv - box.lo[v]);
+      const int iu = cu - box.lo[u], iv = cv - box.lo[v];
+      const double h = map.height(iu, iv);
+      const bool up = map.columnUp(iu, iv);
+      const auto solidAt = [&](int k) { return up ? k <= h : k >= h; };
       std::size_t i = g.index(vertex(a, sub.lo[a], cu, cv));
-      bool before = map.solidAt(h, sub.lo[a]);
+      bool before = solidAt(sub.lo[a]);
       for (int k = sub.lo[a]; k <= sub.hi[a]; ++k, i += along) {
         if (before) g.state_[i] = kSolid;
         if (k == sub.hi[a]) break;
-        const bool next = map.solidAt(h, k + 1);
+        const bool next = solidAt(k + 1);
         if (next != before) g.cross_[a][i] = h;
         before = next;
       }
@@ -65,12 +68,12 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
       std::size_t pos = 0;
       for (int e = 0; e < map.edgesInRow(family); ++e) {
         const double h0 = map.rowHeight(family, ri, e), h1 = map.rowHeight(family, ri, e + 1);
-        int first = 0, count = 0;
-        map.straddle(h0, h1, first, count);
+        const ColumnStraddle st = map.straddleEdge(family, ri, e);
+        const int count = st.total();
         const int c = box.lo[x] + e;
         if (c >= sub.lo[x] && c + 1 <= sub.hi[x]) {
           for (int i = 0; i < count; ++i) {
-            const int k = first + i;
+            const int k = st.level(i);
             if (k < sub.lo[a] || k > sub.hi[a]) continue;
             const double value = row ? (*row)[pos + i] : map.interpolatedCrossing(h0, h1, c, k);
             std::array<int, 3> p{};
@@ -178,13 +181,18 @@ double SampleGrid::columnHeight(Direction d, int cu, int cv) const {
   return std::clamp(c, std::nextafter(double(k - 1), kInf), double(k));
 }
 
-ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay) {
+ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay, bool twoSided) {
   ThreeMap map(g.box(), d, threeWay);
   const int a = d.axis, u = map.uAxis(), v = map.vAxis();
   const GridBox& box = g.box();
+  const Direction flip{d.axis, -d.sign};
   for (int cv = box.lo[v]; cv <= box.hi[v]; ++cv)
-    for (int cu = box.lo[u]; cu <= box.hi[u]; ++cu)
-      map.setHeight(cu - box.lo[u], cv - box.lo[v], g.columnHeight(d, cu, cv));
+    for (int cu = box.lo[u]; cu <= box.hi[u]; ++cu) {
+      if (twoSided && !g.columnValid(d, cu, cv))
+        map.setColumn(cu - box.lo[u], cv - box.lo[v], g.columnHeight(flip, cu, cv), true);
+      else
+        map.setHeight(cu - box.lo[u], cv - box.lo[v], g.columnHeight(d, cu, cv));
+    }
   if (!threeWay) return map;
   for (int family = 0; family < 2; ++family) {
     const int x = family == 0 ? u : v, y = family == 0 ? v : u;
@@ -192,11 +200,10 @@ ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay) {
       std::vector<double>& dst = map.row(family, r);
       for (int e = 0; e < map.edgesInRow(family); ++e) {
         const double h0 = map.rowHeight(family, r, e), h1 = map.rowHeight(family, r, e + 1);
-        int first = 0, count = 0;
-        map.straddle(h0, h1, first, count);
-        for (int i = 0; i < count; ++i) {
+        const ColumnStraddle st = map.straddleEdge(family, r, e);
+        for (int i = 0; i < st.total(); ++i) {
           std::array<int, 3> p{};
-          p[a] = first + i;
+          p[a] = st.level(i);
           p[x] = box.lo[x] + e;
           p[y] = box.lo[y] + r;
           double value = g.crossing(x, g.index(p));

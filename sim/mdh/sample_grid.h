@@ -66,7 +66,8 @@ class SampleGrid {
 };
 
 // Packs a whole cell (g covers the cell's box) into a heightmap in direction d;
-// every line along d.axis must be valid for d.
-ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay);
+// every line along d.axis must be valid for d, or, `twoSided`, for d or its
+// opposite (those valid only for the opposite become flipped columns).
+ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay, bool twoSided = false);
 
 }  // namespace mdhd::mdh

@@ -12,8 +12,8 @@ bool leafSolidAt(const LeafView& leaf, const GridPoint& p) {
     return leaf.state == CellState::kSolid;
   const ThreeMap& m = *leaf.map;
   const GridBox& b = m.box();
-  return m.solidAt(m.height(p[m.uAxis()] - b.lo[m.uAxis()], p[m.vAxis()] - b.lo[m.vAxis()]),
-                   p[m.axis()]);
+  return m.columnSolidAt(p[m.uAxis()] - b.lo[m.uAxis()], p[m.vAxis()] - b.lo[m.vAxis()],
+                         p[m.axis()]);
 }
 
 double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* sampled) {
@@ -27,8 +27,9 @@ double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* 
   const GridBox& b = m.box();
   const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
   if (axis == a) {
-    const double h = m.height(p[u] - b.lo[u], p[v] - b.lo[v]);
-    return m.solidAt(h, p[a]) != m.solidAt(h, p[a] + 1) ? h : none;
+    const int iu = p[u] - b.lo[u], iv = p[v] - b.lo[v];
+    return m.columnSolidAt(iu, iv, p[a]) != m.columnSolidAt(iu, iv, p[a] + 1) ? m.height(iu, iv)
+                                                                              : none;
   }
   const int family = axis == u ? 0 : 1;
   const int r = family == 0 ? p[v] - b.lo[v] : p[u] - b.lo[u];
@@ -36,16 +37,15 @@ double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* 
   std::size_t pos = 0;
   for (int e = 0;; ++e) {
     const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
-    int first = 0, count = 0;
-    m.straddle(h0, h1, first, count);
+    const ColumnStraddle st = m.straddleEdge(family, r, e);
     if (e < edge) {
-      pos += count;
+      pos += st.total();
       continue;
     }
-    const int k = p[a];
-    if (k < first || k >= first + count) return none;
-    if (!m.threeWay()) return m.interpolatedCrossing(h0, h1, p[axis], k);
-    return m.row(family, r)[pos + static_cast<std::size_t>(k - first)];
+    const int at = st.indexOf(p[a]);
+    if (at < 0) return none;
+    if (!m.threeWay()) return m.interpolatedCrossing(h0, h1, p[axis], p[a]);
+    return m.row(family, r)[pos + static_cast<std::size_t>(at)];
   }
 }
 

@@ -20,6 +20,8 @@ struct Stats {
   std::int64_t resamples = 0;
   std::int64_t forcedCells = 0;
   std::int64_t forcedVertices = 0;
+  std::int64_t flippedColumns = 0;   // two-sided maps' columns solid on the far side
+  std::int64_t twoSidedLeaves = 0;   // leaves holding some
   std::int64_t parentSamples = 0;    // parent heights strictly inside their cell
   std::int64_t embeddedSamples = 0;  // embedded heights stored
   std::size_t memoryBytes = 0;       // everything the stock allocated

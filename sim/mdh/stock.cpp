@@ -179,11 +179,12 @@ std::optional<CutResult> Stock::cutIfFastWith(const geom::LineSolid& solid,
         break;  // a brick needs more than a z map: cut with undo copies as below
     }
   }
-  // Every slow cut counts an overhang event at the leaf it starts from (cut_cell.cpp),
-  // and vertex drops follow only from slow cuts: no event, no slow path.
+  // Every new direction counts an overhang event at the leaf it starts from and
+  // every slow cut that changes its leaf a slow cut (cut_cell.cpp); vertex drops
+  // follow only from slow cuts.
   BrickUndo undo;
   const CutCounters step = cutBricks(cache, tool_direction, fresh, &undo, std::move(lazySolid));
-  if (step.overhangEvents > 0 || !step.dropped.empty()) {
+  if (step.overhangEvents > 0 || step.slowCuts > 0 || !step.dropped.empty()) {
     for (std::size_t i = 0; i < undo.bricks.size(); ++i)
       roots_[static_cast<std::size_t>(undo.bricks[i])] = std::move(undo.before[i]);
     --step_;
@@ -311,6 +312,7 @@ CutContext Stock::brickContext(const IntervalCache& cache, const GridBox& reach,
                     options_.ruleset,
                     options_.step_volumes,
                     options_.three_way,
+                    options_.three_way && options_.two_sided,
                     toolDirection,
                     toolRadius_ / grid_.h,
                     options_.seed,

@@ -21,10 +21,10 @@ void partialSegments(const ThreeMap& m, int axis, const std::array<int, 3>& at,
   const GridBox& box = m.box();
   const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
   if (axis == a) {
-    const double h = m.height(at[u] - box.lo[u], at[v] - box.lo[v]);
-    const double len = m.columnLength(h);
-    if (m.solidCount(h) == 0) return;
-    if (m.direction().sign > 0)
+    const int iu = at[u] - box.lo[u], iv = at[v] - box.lo[v];
+    const double len = m.columnLengthAt(iu, iv);
+    if (m.columnCount(iu, iv) == 0) return;
+    if (m.columnUp(iu, iv))
       out.push_back({double(box.lo[a]), box.lo[a] + len});
     else
       out.push_back({box.hi[a] - len, double(box.hi[a])});
@@ -38,28 +38,31 @@ void partialSegments(const ThreeMap& m, int axis, const std::array<int, 3>& at,
   // Scratch kept per thread: a query over every grid line of a region (the overhang
   // area) asks this once per line and cell.
   thread_local std::vector<int> counts;
-  thread_local std::vector<std::uint8_t> solid;
+  thread_local std::vector<std::uint8_t> solid, ups;
   thread_local std::vector<double> cross;
   thread_local std::vector<Span> segs;
   counts.resize(n);
   solid.resize(n);
+  ups.resize(n);
   cross.assign(n - 1, std::nan(""));
   for (int e = 0; e < n; ++e) {
-    const double h = m.rowHeight(family, r, e);
-    counts[e] = m.solidCount(h);
-    solid[e] = m.solidAt(h, k);
+    const int iu = family == 0 ? e : r, iv = family == 0 ? r : e;
+    counts[e] = m.columnCount(iu, iv);
+    solid[e] = m.columnSolidAt(iu, iv, k);
+    ups[e] = m.columnUp(iu, iv);
   }
   std::size_t pos = 0;
   for (int e = 0; e + 1 < n; ++e) {
-    int first = 0, count = 0;
-    m.straddleCounts(counts[e], counts[e + 1], first, count);
-    if (k >= first && k < first + count) {
+    const ColumnStraddle st =
+        columnsStraddle(counts[e], ups[e], counts[e + 1], ups[e + 1], box.lo[a], box.hi[a]);
+    const int idx = st.indexOf(k);
+    if (idx >= 0) {
       cross[e] = m.threeWay()
-                     ? m.row(family, r)[pos + (k - first)]
+                     ? m.row(family, r)[pos + idx]
                      : m.interpolatedCrossing(m.rowHeight(family, r, e),
                                               m.rowHeight(family, r, e + 1), box.lo[axis] + e, k);
     }
-    pos += count;
+    pos += st.total();
   }
   segs.clear();
   segmentsFromSamples(box.lo[axis], solid, cross, segs);
@@ -105,7 +108,8 @@ bool Stock::isSolid(const glm::dvec3& p) const {
   }
   const Cell* c = leafAt(g);
   if (c->state != CellState::kPartial) return c->state == CellState::kSolid;
-  // Bilinear height between the four columns around the point.
+  // Bilinear depth into the solid between the four columns around the point (for
+  // columns all on one side: the bilinear height compared with the point's).
   const ThreeMap& m = *c->map;
   const GridBox& box = m.box();
   const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
@@ -115,13 +119,13 @@ bool Stock::isSolid(const glm::dvec3& p) const {
   const int iv = std::min(static_cast<int>(fv), box.cubes(v) - 1);
   const double tu = fu - iu, tv = fv - iv;
   const double below = box.lo[a] - 1.0, above = box.hi[a] + 1.0;
-  auto h = [&](int du, int dv) {
-    const double x = m.height(iu + du, iv + dv);
-    return std::clamp(x, below, above);
+  auto depth = [&](int du, int dv) {
+    const double x = std::clamp(m.height(iu + du, iv + dv), below, above);
+    return m.columnUp(iu + du, iv + dv) ? x - g[a] : g[a] - x;
   };
-  const double hh = (1 - tu) * (1 - tv) * h(0, 0) + tu * (1 - tv) * h(1, 0) +
-                    (1 - tu) * tv * h(0, 1) + tu * tv * h(1, 1);
-  return m.direction().sign > 0 ? g[a] <= hh : g[a] >= hh;
+  return (1 - tu) * (1 - tv) * depth(0, 0) + tu * (1 - tv) * depth(1, 0) +
+             (1 - tu) * tv * depth(0, 1) + tu * tv * depth(1, 1) >=
+         0.0;
 }
 
 void Stock::solidIntervals(int axis, int iu, int iv, std::vector<geom::Interval>& out) const {

@@ -1,6 +1,7 @@
 // The stock's statistics and memory accounting (thesis 6.3).
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "sim/mdh/stock.h"
@@ -20,26 +21,37 @@ std::int64_t sampleOwners(const ThreeMap& m, std::int64_t& parents, std::int64_t
   std::int64_t owners = 0;
   for (int iv = 0; iv < nv; ++iv)
     for (int iu = 0; iu < nu; ++iu) {
-      const double h = m.height(iu, iv);
-      const int n = m.solidCount(h);
+      const int n = m.columnCount(iu, iv);
       const bool partial = n != 0 && n != m.levels();
       parents += partial;
-      int first[2] = {0, 0}, count[2] = {0, 0};
+      // The level runs of both edges' crossings (up to two each where a neighbour is on
+      // the other side of a two-sided map) and the top solid vertex, as a union.
+      std::array<std::pair<int, int>, 5> runs;  // [first, end)
+      std::size_t count = 0;
       if (m.threeWay()) {
-        if (iu + 1 < nu) m.straddle(h, m.height(iu + 1, iv), first[0], count[0]);
-        if (iv + 1 < nv) m.straddle(h, m.height(iu, iv + 1), first[1], count[1]);
-        embedded += count[0] + count[1];
+        for (int e = 0; e < 2; ++e) {
+          if (e == 0 ? iu + 1 >= nu : iv + 1 >= nv) continue;
+          const ColumnStraddle st = e == 0 ? m.straddleColumns(iu, iv, iu + 1, iv)
+                                           : m.straddleColumns(iu, iv, iu, iv + 1);
+          embedded += st.total();
+          for (int r = 0; r < 2; ++r)
+            if (st.count[r] > 0) runs[count++] = {st.first[r], st.first[r] + st.count[r]};
+        }
       }
-      const int overlap = std::max(
-          0, std::min(first[0] + count[0], first[1] + count[1]) - std::max(first[0], first[1]));
-      owners += count[0] + count[1] - overlap;
-      if (!partial) continue;
-      const int top = m.direction().sign > 0 ? box.lo[a] + n - 1 : box.hi[a] - n;
-      const auto in = [&](int k) {
-        return (k >= first[0] && k < first[0] + count[0]) ||
-               (k >= first[1] && k < first[1] + count[1]);
-      };
-      owners += !in(top);
+      if (partial) {
+        const int top = m.columnUp(iu, iv) ? box.lo[a] + n - 1 : box.hi[a] - n;
+        runs[count++] = {top, top + 1};
+      }
+      // At most five runs: an insertion sort.
+      for (std::size_t i = 1; i < count; ++i)
+        for (std::size_t j = i; j > 0 && runs[j] < runs[j - 1]; --j)
+          std::swap(runs[j], runs[j - 1]);
+      int reached = std::numeric_limits<int>::min();
+      for (std::size_t i = 0; i < count; ++i) {
+        const int from = std::max(runs[i].first, reached);
+        if (runs[i].second > from) owners += runs[i].second - from;
+        reached = std::max(reached, runs[i].second);
+      }
     }
   return owners;
 }
@@ -61,6 +73,7 @@ Stats Stock::stats() const {
   // Per brick on the stock's threads (integers: any order gives the same sums).
   struct Counts {
     std::int64_t leaves = 0, solid = 0, empty = 0, owners = 0, parents = 0, embedded = 0;
+    std::int64_t flipped = 0, twoSided = 0;
     std::size_t bytes = 0;
     std::array<std::int64_t, 6> directions{};
   };
@@ -75,6 +88,8 @@ Stats Stock::stats() const {
         ++c.empty;
       if (!leaf.map) return;
       c.directions[leaf.map->direction().index()] += 1;
+      c.flipped += leaf.map->flippedColumns();
+      c.twoSided += leaf.map->hasFlips();
       c.bytes += leaf.map->memoryBytes();
       c.owners += sampleOwners(*leaf.map, c.parents, c.embedded);
     });
@@ -88,6 +103,8 @@ Stats Stock::stats() const {
     s.memoryBytes += c.bytes;
     s.parentSamples += c.parents;
     s.embeddedSamples += c.embedded;
+    s.flippedColumns += c.flipped;
+    s.twoSidedLeaves += c.twoSided;
     owners += c.owners;
   }
   s.splitsDirect = totals_.splits[int(SplitType::kDirect)];

@@ -21,6 +21,24 @@ ThreeMap::ThreeMap(const GridBox& box, Direction dir, bool threeWay)
   }
 }
 
+void ThreeMap::setColumn(int iu, int iv, double h, bool flip) {
+  const std::size_t i = static_cast<std::size_t>(iv) * nu_ + iu;
+  const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+  const bool was = flips_ > 0 && flip_[i] != 0;
+  const int before = columnSolidCount(heights_[i], lo, hi, (dir_.sign > 0) != was);
+  const int after = columnSolidCount(h, lo, hi, (dir_.sign > 0) != flip);
+  if (after == 0 || after == levels()) {
+    h = after == 0 ? emptyHeight() : fullHeight();
+    flip = false;
+  }
+  if (flip != was) {
+    if (flip_.empty()) flip_.assign(heights_.size(), 0);
+    flip_[i] = flip ? 1 : 0;
+    flips_ += flip ? 1 : -1;
+  }
+  setHeight(iu, iv, h, before, after);
+}
+
 void ThreeMap::straddle(double h1, double h2, int& first, int& count) const {
   straddleCounts(solidCount(h1), solidCount(h2), first, count);
 }
@@ -54,23 +72,24 @@ double polylineIntegral(double len0, double len1, const Point* pts, std::size_t 
 }  // namespace
 
 // f0, f1: the two columns' solid counts; len0, len1: their solid lengths.
+// up: the side both columns are on (an edge between columns on opposite sides is
+// integrated as a plain map's, from its two lengths).
 double ThreeMap::profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
-                                 const double* crossings) const {
-  int first = 0, count = 0;
-  straddleCounts(f0, f1, first, count);
-  if (!threeWay_ || count == 0) return 0.5 * (len0 + len1);
+                                 const double* crossings, bool up) const {
   const int a = dir_.axis;
+  int first = 0, count = 0;
+  columnStraddle(f0, f1, box_.lo[a], box_.hi[a], up, first, count);
+  if (!threeWay_ || count == 0) return 0.5 * (len0 + len1);
   const double lo = box_.lo[a], hi = box_.hi[a];
   if (count == 1) {
-    const Point p{std::clamp(crossings[0] - edgeStart, 0.0, 1.0),
-                  dir_.sign > 0 ? first - lo : hi - first};
+    const Point p{std::clamp(crossings[0] - edgeStart, 0.0, 1.0), up ? first - lo : hi - first};
     return polylineIntegral(len0, len1, &p, 1);
   }
   thread_local std::vector<Point> pts;
   pts.resize(count);
   for (int i = 0; i < count; ++i)
     pts[i] = {std::clamp(crossings[i] - edgeStart, 0.0, 1.0),
-              dir_.sign > 0 ? first + i - lo : hi - (first + i)};
+              up ? first + i - lo : hi - (first + i)};
   // Crossings at the same spot form a vertical step: walk it from the first
   // column's height towards the second's.
   auto before = [&](const Point& x, const Point& y) {
@@ -83,7 +102,7 @@ double ThreeMap::profileIntegral(int f0, int f1, double len0, double len1, int e
 
 double ThreeMap::edgeIntegral(double h0, double h1, int edgeStart, const double* crossings) const {
   return profileIntegral(solidCount(h0), solidCount(h1), columnLength(h0), columnLength(h1),
-                         edgeStart, crossings);
+                         edgeStart, crossings, dir_.sign > 0);
 }
 
 double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
@@ -91,19 +110,34 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
   // Edge integrals of one row, edges [e0, e1). Solid counts are computed
   // once per column; the walk up to e0 only sums how many crossings to skip.
   thread_local std::vector<int> counts;
+  thread_local std::vector<std::uint8_t> ups;
   auto rowSum = [&](int family, int r, int e0, int e1) {
     counts.resize(e1 + 1);
-    for (int e = 0; e <= e1; ++e) counts[e] = solidCount(rowHeight(family, r, e));
+    ups.resize(e1 + 1);
+    for (int e = 0; e <= e1; ++e) {
+      const int iu = family == 0 ? e : r, iv = family == 0 ? r : e;
+      counts[e] = columnCount(iu, iv);
+      ups[e] = columnUp(iu, iv);
+    }
+    const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+    const auto crossingsAt = [&](int e) {
+      return columnsStraddle(counts[e], ups[e], counts[e + 1], ups[e + 1], lo, hi).total();
+    };
     std::size_t pos = 0;
-    for (int e = 0; e < e0; ++e) pos += std::abs(counts[e] - counts[e + 1]);
+    for (int e = 0; e < e0; ++e) pos += crossingsAt(e);
     const int base = box_.lo[family == 0 ? uAxis() : vAxis()];
     const double* row = threeWay_ ? rows_[family][r].data() : nullptr;
     double sum = 0.0;
     for (int e = e0; e < e1; ++e) {
-      sum += profileIntegral(counts[e], counts[e + 1], columnLength(rowHeight(family, r, e)),
-                             columnLength(rowHeight(family, r, e + 1)), base + e,
-                             row != nullptr ? row + pos : nullptr);
-      pos += std::abs(counts[e] - counts[e + 1]);
+      const double len0 = lengthOf(rowHeight(family, r, e), ups[e]);
+      const double len1 = lengthOf(rowHeight(family, r, e + 1), ups[e + 1]);
+      // Full and empty columns are unflipped: opposite sides mean crossings at both ends.
+      if (ups[e] != ups[e + 1])
+        sum += 0.5 * (len0 + len1);
+      else
+        sum += profileIntegral(counts[e], counts[e + 1], len0, len1, base + e,
+                               row != nullptr ? row + pos : nullptr, ups[e] != 0);
+      pos += crossingsAt(e);
     }
     return sum;
   };
@@ -115,13 +149,13 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
   for (int iv = iv0; iv <= iv1; ++iv)
     for (int iu = iu0; iu <= iu1; ++iu) {
       const int squares = (iu == iu0 || iu == iu1 ? 1 : 2) * (iv == iv0 || iv == iv1 ? 1 : 2);
-      sum -= 0.25 * squares * columnLength(height(iu, iv));
+      sum -= 0.25 * squares * columnLengthAt(iu, iv);
     }
   return sum;
 }
 
 std::size_t ThreeMap::memoryBytes() const {
-  std::size_t bytes = sizeof(ThreeMap) + heights_.capacity() * sizeof(double);
+  std::size_t bytes = sizeof(ThreeMap) + heights_.capacity() * sizeof(double) + flip_.capacity();
   for (const auto& family : rows_) {
     bytes += family.capacity() * sizeof(std::vector<double>);
     for (const auto& r : family) bytes += r.capacity() * sizeof(double);
@@ -141,18 +175,10 @@ ThreeMap ThreeMap::restrictedTo(const GridBox& sub) const {
   const int u = uAxis(), v = vAxis();
   const int du = sub.lo[u] - box_.lo[u];
   const int dv = sub.lo[v] - box_.lo[v];
-  for (int iv = 0; iv < out.nv_; ++iv) {
-    for (int iu = 0; iu < out.nu_; ++iu) {
-      double h = height(iu + du, iv + dv);
-      // Clamp into the child's extent along the direction axis.
-      const int n = out.solidCount(h);
-      if (n == 0)
-        h = out.emptyHeight();
-      else if (n == out.levels())
-        h = out.fullHeight();
-      out.setHeight(iu, iv, h);
-    }
-  }
+  // setColumn clamps into the child's extent along the direction axis.
+  for (int iv = 0; iv < out.nv_; ++iv)
+    for (int iu = 0; iu < out.nu_; ++iu)
+      out.setColumn(iu, iv, height(iu + du, iv + dv), flipped(iu + du, iv + dv));
   if (!threeWay_) return out;
   for (int family = 0; family < 2; ++family) {
     const int rowOffset = family == 0 ? dv : du;
@@ -162,17 +188,13 @@ ThreeMap ThreeMap::restrictedTo(const GridBox& sub) const {
       std::vector<double>& dst = out.row(family, r);
       std::size_t pos = 0;
       for (int e = 0; e < edgesInRow(family); ++e) {
-        int first = 0, count = 0;
-        straddle(rowHeight(family, r + rowOffset, e), rowHeight(family, r + rowOffset, e + 1),
-                 first, count);
+        const ColumnStraddle from = straddleEdge(family, r + rowOffset, e);
         const int le = e - edgeOffset;
         if (le >= 0 && le < out.edgesInRow(family)) {
-          int cFirst = 0, cCount = 0;
-          out.straddle(out.rowHeight(family, r, le), out.rowHeight(family, r, le + 1), cFirst,
-                       cCount);
-          for (int i = 0; i < cCount; ++i) dst.push_back(src[pos + (cFirst + i - first)]);
+          const ColumnStraddle to = out.straddleEdge(family, r, le);
+          for (int i = 0; i < to.total(); ++i) dst.push_back(src[pos + from.indexOf(to.level(i))]);
         }
-        pos += count;
+        pos += from.total();
       }
       dst.shrink_to_fit();
     }

@@ -12,9 +12,17 @@
 // that grid edge, again as an absolute coordinate along the edge. How many an
 // edge holds follows from its two parent heights, so they are packed per row
 // of edges with no index or pointer per entry.
+//
+// Two-sided maps (thesis 7.4: "a 3-map can store both backfacing and frontfacing
+// surface portions"): a column may be flipped, its solid on the far side of its
+// height (for +a: the vertices k >= H). Only columns that hold a crossing are ever
+// flipped; full and empty ones keep the map's own side. Where two neighbours are on
+// opposite sides the levels where exactly one is solid are up to two runs, still
+// known from the two columns alone, so rows stay packed the same way.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "sim/mdh/direction.h"
@@ -44,6 +52,43 @@ inline void columnStraddle(int f1, int f2, int lo, int hi, bool up, int& first, 
   first = up ? lo + std::min(f1, f2) : hi - std::max(f1, f2) + 1;
 }
 
+// The levels where two columns differ, ascending: one run when the columns are on
+// the same side, up to two when they are not.
+struct ColumnStraddle {
+  int first[2] = {0, 0};
+  int count[2] = {0, 0};
+  int total() const { return count[0] + count[1]; }
+  // Position of `level` among the straddled levels, or -1.
+  int indexOf(int level) const {
+    if (level >= first[0] && level < first[0] + count[0]) return level - first[0];
+    if (level >= first[1] && level < first[1] + count[1]) return count[0] + level - first[1];
+    return -1;
+  }
+  int level(int i) const { return i < count[0] ? first[0] + i : first[1] + i - count[0]; }
+};
+
+// Columns with solid counts f0, f1 on sides up0, up1 (solid from the low face or
+// from the high one), levels lo..hi.
+inline ColumnStraddle columnsStraddle(int f0, bool up0, int f1, bool up1, int lo, int hi) {
+  ColumnStraddle s;
+  if (up0 == up1) {
+    columnStraddle(f0, f1, lo, hi, up0, s.first[0], s.count[0]);
+    return s;
+  }
+  const int n = hi - lo + 1;
+  const int fu = up0 ? f0 : f1, fd = up0 ? f1 : f0;  // the up column's count, the down one's
+  s.count[0] = std::min(fu, n - fd);                 // low levels: only the up one solid
+  s.first[0] = lo;
+  s.count[1] = std::min(fd, n - fu);  // high levels: only the down one solid
+  s.first[1] = hi - s.count[1] + 1;
+  if (s.count[0] == 0) {
+    s.first[0] = s.first[1];
+    s.count[0] = s.count[1];
+    s.count[1] = 0;
+  }
+  return s;
+}
+
 class ThreeMap {
  public:
   // All columns full.
@@ -63,8 +108,42 @@ class ThreeMap {
   // All parent heights, row-major (iv * columnsU() + iu): the pointer lives as long
   // as the map; setHeight changes what it reads.
   const double* heightData() const { return heights_.data(); }
+  // An unflipped column (a flipped one loses its flip).
   void setHeight(int iu, int iv, double h) {
+    if (flips_ > 0 && flip_[iv * nu_ + iu]) {
+      setColumn(iu, iv, h, false);
+      return;
+    }
     setHeight(iu, iv, h, solidCount(heights_[iv * nu_ + iu]), solidCount(h));
+  }
+  // Two-sided maps: a column's height and side (`flip`: solid on the far side). A
+  // full or empty column is stored unflipped.
+  void setColumn(int iu, int iv, double h, bool flip);
+  bool hasFlips() const { return flips_ > 0; }
+  int flippedColumns() const { return flips_; }
+  bool flipped(int iu, int iv) const { return flips_ > 0 && flip_[iv * nu_ + iu] != 0; }
+  // Whether the column's solid runs from the low face (the +a side).
+  bool columnUp(int iu, int iv) const { return (dir_.sign > 0) != flipped(iu, iv); }
+  // The column's solid vertex count, solidity at a level and solid length, whatever
+  // its side (the h-only forms below hold for unflipped columns).
+  int columnCount(int iu, int iv) const {
+    return columnSolidCount(height(iu, iv), box_.lo[dir_.axis], box_.hi[dir_.axis],
+                            columnUp(iu, iv));
+  }
+  bool columnSolidAt(int iu, int iv, int level) const {
+    const double h = height(iu, iv);
+    return columnUp(iu, iv) ? level <= h : level >= h;
+  }
+  double columnLengthAt(int iu, int iv) const { return lengthOf(height(iu, iv), columnUp(iu, iv)); }
+  // The levels where two neighbouring columns differ (their edges' crossings).
+  ColumnStraddle straddleColumns(int iu0, int iv0, int iu1, int iv1) const {
+    return columnsStraddle(columnCount(iu0, iv0), columnUp(iu0, iv0), columnCount(iu1, iv1),
+                           columnUp(iu1, iv1), box_.lo[dir_.axis], box_.hi[dir_.axis]);
+  }
+  // The same for edge `edge` of a row (rowHeight's columns).
+  ColumnStraddle straddleEdge(int family, int index, int edge) const {
+    return family == 0 ? straddleColumns(edge, index, edge + 1, index)
+                       : straddleColumns(index, edge, index, edge + 1);
   }
   // The same when the caller has the solid counts before and after (a cut does).
   void setHeight(int iu, int iv, double h, int countBefore, int countAfter) {
@@ -88,9 +167,10 @@ class ThreeMap {
     columnStraddle(f1, f2, box_.lo[dir_.axis], box_.hi[dir_.axis], dir_.sign > 0, first, count);
   }
   // Solid length of a column in grid units.
-  double columnLength(double h) const {
+  double columnLength(double h) const { return lengthOf(h, dir_.sign > 0); }
+  double lengthOf(double h, bool up) const {
     const double lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
-    if (dir_.sign > 0) return h < lo ? 0.0 : std::min(h, hi) - lo;
+    if (up) return h < lo ? 0.0 : std::min(h, hi) - lo;
     return h > hi ? 0.0 : hi - std::max(h, lo);
   }
 
@@ -145,7 +225,7 @@ class ThreeMap {
 
  private:
   double profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
-                         const double* crossings) const;
+                         const double* crossings, bool up) const;
 
   GridBox box_;
   Direction dir_;
@@ -156,6 +236,8 @@ class ThreeMap {
   int emptyColumns_ = 0;
   std::vector<double> heights_;
   std::vector<std::vector<double>> rows_[2];
+  std::vector<std::uint8_t> flip_;  // per column, allocated at the first flip
+  int flips_ = 0;
 };
 
 }  // namespace mdhd::mdh

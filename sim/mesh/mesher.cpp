@@ -492,7 +492,7 @@ void Mesher::walkColumn(const LeafInfo& l, int pu, int pv, std::uint8_t* out) {
     const int count = end - k + 1;
     if (o.kind != LeafKind::kPartial) {
       std::fill(at, at + count, o.kind == LeafKind::kSolid ? 1 : 0);
-    } else if (o.axis == a && o.sign == l.sign) {
+    } else if (o.axis == a && o.sign == l.sign && !o.twoSided) {
       // Solid below (+) or above (-) the owner's column surface.
       const int solid = view_.columnSolidCount(owner, p[u], p[v]);
       const int edge = o.sign > 0 ? o.lo[a] + solid : o.hi[a] - solid + 1;
@@ -649,10 +649,18 @@ void Mesher::partialLeaf(const LeafInfo& l) {
 void Mesher::interior(int leaf) {
   hint_ = leaf;
   const LeafInfo& l = view_.leaf(leaf);
-  if (l.kind == LeafKind::kPartial)
+  if (l.kind == LeafKind::kPartial && l.twoSided) {
+    // Columns on both sides: no run of levels per column to walk; every cube, from
+    // its corners.
+    GridPoint c{};
+    for (c[2] = l.lo[2]; c[2] < l.hi[2]; ++c[2])
+      for (c[1] = l.lo[1]; c[1] < l.hi[1]; ++c[1])
+        for (c[0] = l.lo[0]; c[0] < l.hi[0]; ++c[0]) cube(c);
+  } else if (l.kind == LeafKind::kPartial) {
     partialLeaf(l);
-  else
+  } else {
     uniformLeaf(l);
+  }
 }
 
 void Mesher::exterior(int leaf) {
@@ -669,7 +677,7 @@ void Mesher::exterior(int leaf) {
       }
       // A side of a partial leaf: the solid squares from the columns' base up, strip by
       // strip, as rectangles (solidStrips); the rest square by square.
-      const bool strips = l.kind == LeafKind::kPartial && a != l.axis;
+      const bool strips = l.kind == LeafKind::kPartial && a != l.axis && !l.twoSided;
       if (strips) solidStrips(l, 2 * a + side);
       const int m = l.axis, levels = l.hi[m] - l.lo[m];
       // Squares without a solid corner have nothing on them (a machined top face).

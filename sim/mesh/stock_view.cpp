@@ -32,6 +32,7 @@ StockView::StockView(const mdh::Stock& stock, int threads) {
       leaf.info.kind = LeafKind::kPartial;
       leaf.info.axis = lv.map->axis();
       leaf.info.sign = lv.map->direction().sign;
+      leaf.info.twoSided = lv.map->hasFlips();
       leaf.map = lv.map;
     } else {
       leaf.info.kind = lv.state == mdh::CellState::kEmpty ? LeafKind::kEmpty : LeafKind::kSolid;
@@ -90,10 +91,14 @@ void StockView::indexRows(Leaf& leaf) {
   counts.resize(static_cast<std::size_t>(m.columnsU()) * m.columnsV());
   for (int iv = 0; iv < m.columnsV(); ++iv)
     for (int iu = 0; iu < m.columnsU(); ++iu)
-      counts[static_cast<std::size_t>(iv) * m.columnsU() + iu] = m.solidCount(m.height(iu, iv));
+      counts[static_cast<std::size_t>(iv) * m.columnsU() + iu] = m.columnCount(iu, iv);
   const auto countAt = [&](int f, int r, int e) {
     return f == 0 ? counts[static_cast<std::size_t>(r) * m.columnsU() + e]
                   : counts[static_cast<std::size_t>(e) * m.columnsU() + r];
+  };
+  const int lo = m.box().lo[m.axis()], hi = m.box().hi[m.axis()];
+  const auto upAt = [&](int f, int r, int e) {
+    return f == 0 ? m.columnUp(e, r) : m.columnUp(r, e);
   };
   for (int f = 0; f < 2; ++f) {
     const int edges = m.edgesInRow(f);
@@ -103,9 +108,9 @@ void StockView::indexRows(Leaf& leaf) {
       int* start = &leaf.rowStart[f][static_cast<std::size_t>(r) * (edges + 1)];
       for (int e = 0; e < edges; ++e) {
         start[e] = pos;
-        int first = 0, count = 0;
-        m.straddleCounts(countAt(f, r, e), countAt(f, r, e + 1), first, count);
-        pos += count;
+        pos += mdh::columnsStraddle(countAt(f, r, e), upAt(f, r, e), countAt(f, r, e + 1),
+                                    upAt(f, r, e + 1), lo, hi)
+                   .total();
       }
       start[edges] = pos;
       if (static_cast<std::size_t>(pos) != m.row(f, r).size()) {
@@ -154,13 +159,13 @@ bool StockView::solidIn(int leaf, const GridPoint& p) const {
   if (l.info.kind != LeafKind::kPartial) return l.info.kind == LeafKind::kSolid;
   const mdh::ThreeMap& m = *l.map;
   const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
-  return m.solidAt(m.height(p[u] - l.info.lo[u], p[v] - l.info.lo[v]), p[a]);
+  return m.columnSolidAt(p[u] - l.info.lo[u], p[v] - l.info.lo[v], p[a]);
 }
 
 int StockView::columnSolidCount(int leaf, int pu, int pv) const {
   const Leaf& l = leaves_[leaf];
   const mdh::ThreeMap& m = *l.map;
-  return m.solidCount(m.height(pu - l.info.lo[m.uAxis()], pv - l.info.lo[m.vAxis()]));
+  return m.columnCount(pu - l.info.lo[m.uAxis()], pv - l.info.lo[m.vAxis()]);
 }
 
 double StockView::crossing(const GridPoint& p, int axis, int hint) const {
@@ -226,17 +231,20 @@ double StockView::crossingIn(int leaf, const GridPoint& p, int axis) const {
   const GridPoint& lo = l.info.lo;
   if (p[axis] >= l.info.hi[axis]) return kNone;  // the edge leaves the cell
   if (axis == a) {
-    const double h = m.height(p[u] - lo[u], p[v] - lo[v]);
-    return m.solidAt(h, p[a]) != m.solidAt(h, p[a] + 1) ? h : kNone;
+    const int iu = p[u] - lo[u], iv = p[v] - lo[v];
+    return m.columnSolidAt(iu, iv, p[a]) != m.columnSolidAt(iu, iv, p[a] + 1) ? m.height(iu, iv)
+                                                                              : kNone;
   }
   const int f = axis == u ? 0 : 1;
   const int r = f == 0 ? p[v] - lo[v] : p[u] - lo[u];
   const int e = p[axis] - lo[axis];
   const double h0 = m.rowHeight(f, r, e), h1 = m.rowHeight(f, r, e + 1);
-  int first = 0, count = 0;
-  m.straddle(h0, h1, first, count);
+  const mdh::ColumnStraddle st = m.straddleEdge(f, r, e);
   const int k = p[a];
-  if (k < first || k >= first + count) return kNone;
+  const int at = st.indexOf(k);
+  if (at < 0) return kNone;
+  // A two-sided leaf's surface does not continue into the leaves along its axis.
+  if (l.info.twoSided && l.rowsBroken) return m.interpolatedCrossing(h0, h1, p[axis], k);
   if (!m.threeWay() || l.rowsBroken) {
     // Most columns hold their surface in this leaf: the walk only for those that do not.
     const auto inside = [&](double h) {
@@ -250,7 +258,7 @@ double StockView::crossingIn(int leaf, const GridPoint& p, int axis) const {
   }
   const int edges = m.edgesInRow(f);
   const int start = l.rowStart[f][static_cast<std::size_t>(r) * (edges + 1) + e];
-  return m.row(f, r)[static_cast<std::size_t>(start + (k - first))];
+  return m.row(f, r)[static_cast<std::size_t>(start + at)];
 }
 
 }  // namespace mdhd::mesh

@@ -31,6 +31,7 @@ struct LeafInfo {
   LeafKind kind = LeafKind::kSolid;
   int axis = 2;  // direction of representation (partial leaves)
   int sign = 1;
+  bool twoSided = false;  // some columns hold their solid on the far side (sign -sign)
 };
 
 class StockView {
@@ -71,7 +72,7 @@ class StockView {
   // The same when p's owner is known (the mesher walking a leaf's own cubes).
   double crossingOwnedBy(int owner, const GridPoint& p, int axis) const;
   // Number of solid vertices in the column of a partial leaf through (pu, pv)
-  // (grid coordinates on the leaf's u and v axes).
+  // (grid coordinates on the leaf's u and v axes), counted from its own side.
   int columnSolidCount(int leaf, int pu, int pv) const;
   // 3-map leaves whose embedded rows did not match their parent heights (an
   // engine fault); their crossings are interpolated like a plain heightmap's.

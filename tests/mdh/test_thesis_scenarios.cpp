@@ -22,8 +22,9 @@ const geom::Aabb kCube{{0, 0, 0}, {4, 4, 4}};
 
 class Scenario {
  public:
-  explicit Scenario(geom::Aabb box = kCube, std::vector<Rule> rules = StockOptions{}.ruleset)
-      : ref_(box), stock_(box, options(std::move(rules))) {}
+  explicit Scenario(geom::Aabb box = kCube, std::vector<Rule> rules = StockOptions{}.ruleset,
+                    bool twoSided = false)
+      : ref_(box), stock_(box, options(std::move(rules), twoSided)) {}
 
   CutResult cut(std::shared_ptr<geom::LineSolid> s, glm::dvec3 dir) {
     ref_.cut(s);
@@ -60,8 +61,9 @@ class Scenario {
   }
 
  private:
-  static StockOptions options(std::vector<Rule> rules) {
+  static StockOptions options(std::vector<Rule> rules, bool twoSided) {
     StockOptions o;
+    o.two_sided = twoSided;
     o.density = 10;
     o.brick = 0;
     o.threads = 1;
@@ -107,6 +109,25 @@ TEST(ThesisScenarios, Figure3_6TwoCornersSignConflict) {
   EXPECT_EQ(st.splits(), 1);
   EXPECT_EQ(st.splitsSignConflict, 1);
   EXPECT_EQ(st.leaves, 2);
+  s.expectMatchesReference();
+}
+
+// The same with two-sided maps (thesis 7.4): one cell holds both corners, the
+// columns under the upper corner flipped; no split.
+TEST(ThesisScenarios, Figure3_6TwoSidedMapHoldsBothCorners) {
+  Scenario s(kCube, StockOptions{}.ruleset, true);
+  s.cut<BoxSolid>({1, 1, 1}, glm::dvec3{3, 3, 3}, glm::dvec3{5, 5, 5});
+  const CutResult r = s.cut<BoxSolid>({-1, -1, -1}, glm::dvec3{-1, -1, -1}, glm::dvec3{1, 1, 1});
+  EXPECT_TRUE(r.overhang);
+  const Stats st = s.stats();
+  EXPECT_EQ(st.splits(), 0);
+  EXPECT_EQ(st.leaves, 1);
+  EXPECT_EQ(st.twoSidedLeaves, 1);
+  // The two corners' column counts tie: the lower corner's columns are the ones on
+  // the other side, 10 or 11 each way at density 10 (a vertex on the corner's face
+  // is in or out by the vertex rule's grazing convention, not the same on every axis).
+  EXPECT_GE(st.flippedColumns, 10 * 10);
+  EXPECT_LE(st.flippedColumns, 11 * 11);
   s.expectMatchesReference();
 }
 

@@ -18,6 +18,7 @@ struct Case {
   bool threeWay;
   int brick;
   std::uint32_t seed;
+  bool twoSided = false;
 };
 
 class RandomCuts : public ::testing::TestWithParam<Case> {};
@@ -54,8 +55,13 @@ void cutRandomly(mdh::Stock& stock, std::uint32_t seed, int moves) {
 
 TEST_P(RandomCuts, MeshIsClosedAndHoldsTheVolume) {
   const Case c = GetParam();
-  mdh::Stock stock({{0, 0, 0}, {6, 6, 4}}, stockOptions(8, c.threeWay, c.brick));
+  mdh::StockOptions o = stockOptions(8, c.threeWay, c.brick);
+  o.two_sided = c.twoSided;
+  mdh::Stock stock({{0, 0, 0}, {6, 6, 4}}, o);
   cutRandomly(stock, c.seed, 8);
+  if (c.twoSided) {
+    EXPECT_GT(stock.stats().flippedColumns, 0);  // the cuts make some
+  }
   const auto m = meshOf(stock);
   expectWatertight(m);
   const double area = surfaceArea(m.mesh);
@@ -77,6 +83,8 @@ std::vector<Case> cases() {
   const int bricks[] = {0, 8, 32, 8};
   for (std::uint32_t seed = 1; seed <= 4; ++seed)
     for (bool threeWay : {true, false}) out.push_back({threeWay, bricks[seed - 1], seed});
+  for (std::uint32_t seed = 1; seed <= 4; ++seed)
+    out.push_back({true, bricks[seed - 1], seed, true});
   return out;
 }
 
@@ -107,8 +115,11 @@ TEST(RandomCuts, ThreeMapMeshIgnoresTheCellLayout) {
 // Named from the case, so ctest's names stay the same from build to build.
 INSTANTIATE_TEST_SUITE_P(Seeds, RandomCuts, ::testing::ValuesIn(cases()), [](const auto& p) {
   const Case& c = p.param;
-  return "seed" + std::to_string(c.seed) + (c.threeWay ? "_threemap" : "_heightmap") + "_brick" +
-         std::to_string(c.brick);
+  return "seed" + std::to_string(c.seed) +
+         (c.twoSided   ? "_twosided"
+          : c.threeWay ? "_threemap"
+                       : "_heightmap") +
+         "_brick" + std::to_string(c.brick);
 });
 
 }  // namespace
