@@ -55,6 +55,7 @@ check::SimulationOptions simulationOptions(const protocol::JobOptions& o) {
   }
   s.seed = o.seed;
   s.three_way = o.three_way;
+  s.two_sided = o.two_sided;
   s.contact_tolerance = o.contactTolerance();
   s.chain_tolerance = o.chainTolerance();
   return s;

@@ -69,7 +69,7 @@ std::array<std::array<double, 3>, 9> workOffsets(const json& j, const std::strin
 
 JobOptions options(const json& j, const std::string& field) {
   requireObject(j, field,
-                {"density", "steps", "tolerance", "ruleset", "seed", "three_way",
+                {"density", "steps", "tolerance", "ruleset", "seed", "three_way", "two_sided",
                  "contact_tolerance", "chain_tolerance"});
   JobOptions o;
   if (const json* v = optional(j, "density")) {
@@ -108,6 +108,10 @@ JobOptions options(const json& j, const std::string& field) {
     o.seed = v->get<std::uint64_t>();
   }
   if (const json* v = optional(j, "three_way")) o.three_way = boolean(*v, field + ".three_way");
+  if (const json* v = optional(j, "two_sided")) o.two_sided = boolean(*v, field + ".two_sided");
+  if (o.two_sided && !o.three_way) {
+    throw FieldError(field + ".two_sided", "needs three_way (two-sided maps are 3-maps)");
+  }
   if (const json* v = optional(j, "contact_tolerance")) {
     const double t = number(*v, field + ".contact_tolerance");
     if (t < 0.0) throw FieldError(field + ".contact_tolerance", "must be >= 0");

@@ -88,6 +88,7 @@ json mdhBlock(const mdh::Stats& m, double spacing) {
             {"-z", d[5]},
             {"solid", m.solid},
             {"empty", m.empty}}},
+          {"two_sided", {{"leaves", m.twoSidedLeaves}, {"flipped_columns", m.flippedColumns}}},
           {"memory_bytes", m.memoryBytes},
           {"pointer_grid_percent", clean(m.pointerGridPercent)},
           {"grid_spacing_mm", clean(spacing)}};

@@ -64,6 +64,7 @@ mdh::StockOptions stockOptions(const SimulationOptions& o, const kin::Machine& m
   }
   s.density = o.density;
   s.three_way = o.three_way;
+  s.two_sided = o.two_sided;
   s.lazy_crossings = o.lazy_crossings;
   s.ruleset = o.ruleset;
   s.seed = o.seed;

@@ -100,6 +100,25 @@ double ThreeMap::profileIntegral(int f0, int f1, double len0, double len1, int e
   return polylineIntegral(len0, len1, pts.data(), pts.size());
 }
 
+// An edge between columns on opposite sides. Where their solids do not overlap in
+// level (the up column's below, the down column's above, a gap between), the edge's
+// solid is two profiles, each a column's solid against an empty one: the up column's
+// with the straddle's low run of crossings, the down column's with its high run. Where
+// they overlap the crossings cannot tell the two apart: the plain map's trapezoid.
+double ThreeMap::mixedEdgeIntegral(int f0, int f1, double len0, double len1, bool up0,
+                                   int edgeStart, const double* crossings) const {
+  const int fu = up0 ? f0 : f1, fd = up0 ? f1 : f0;
+  if (!threeWay_ || crossings == nullptr || fu + fd > levels()) return 0.5 * (len0 + len1);
+  const double lu = up0 ? len0 : len1, ld = up0 ? len1 : len0;
+  // Crossings ascend by level: the up column's run (fu of them) first.
+  const double upPart = up0 ? profileIntegral(fu, 0, lu, 0.0, edgeStart, crossings, true)
+                            : profileIntegral(0, fu, 0.0, lu, edgeStart, crossings, true);
+  const double* high = crossings + fu;
+  const double downPart = up0 ? profileIntegral(0, fd, 0.0, ld, edgeStart, high, false)
+                              : profileIntegral(fd, 0, ld, 0.0, edgeStart, high, false);
+  return upPart + downPart;
+}
+
 double ThreeMap::edgeIntegral(double h0, double h1, int edgeStart, const double* crossings) const {
   return profileIntegral(solidCount(h0), solidCount(h1), columnLength(h0), columnLength(h1),
                          edgeStart, crossings, dir_.sign > 0);
@@ -133,7 +152,8 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
       const double len1 = lengthOf(rowHeight(family, r, e + 1), ups[e + 1]);
       // Full and empty columns are unflipped: opposite sides mean crossings at both ends.
       if (ups[e] != ups[e + 1])
-        sum += 0.5 * (len0 + len1);
+        sum += mixedEdgeIntegral(counts[e], counts[e + 1], len0, len1, ups[e] != 0, base + e,
+                                 row != nullptr ? row + pos : nullptr);
       else
         sum += profileIntegral(counts[e], counts[e + 1], len0, len1, base + e,
                                row != nullptr ? row + pos : nullptr, ups[e] != 0);

@@ -226,6 +226,8 @@ class ThreeMap {
  private:
   double profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
                          const double* crossings, bool up) const;
+  double mixedEdgeIntegral(int f0, int f1, double len0, double len1, bool up0, int edgeStart,
+                           const double* crossings) const;
 
   GridBox box_;
   Direction dir_;

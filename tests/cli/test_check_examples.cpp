@@ -180,6 +180,36 @@ TEST(CheckExamples, PlainMapsHoldTheExamplesWithinOneSpacing) {
   EXPECT_EQ(got, want) << tolerant.report["collisions"].dump(2);
 }
 
+// Two-sided maps (options.two_sided) are the same stock in fewer cells: the same
+// collisions at the same lines, the same volume up to the mixed columns' trapezoids,
+// and no sign conflict split.
+TEST(CheckExamples, TwoSidedMapsFindTheSameCollisions) {
+  for (const char* name : {"crash-3axis.json", "side-drill-ac.json", "donut-bc.json"}) {
+    SCOPED_TRACE(name);
+    const json one = check(example(name)).report;
+    const json two = check(exampleWith(name, {{"two_sided", true}})).report;
+    const auto collisions = [](const json& report) {
+      std::set<std::pair<std::string, int>> out;
+      for (const json& e : report["collisions"])
+        out.insert({e["type"].get<std::string>(), e["line"].get<int>()});
+      return out;
+    };
+    EXPECT_EQ(collisions(two), collisions(one));
+    EXPECT_EQ(two["status"], one["status"]);
+    const double v1 = one["stats"]["final_volume_mm3"].get<double>();
+    const double v2 = two["stats"]["final_volume_mm3"].get<double>();
+    EXPECT_NEAR(v2, v1, 1e-4 * v1);
+    EXPECT_EQ(two["mdh"]["splits"]["sign_conflict"].get<int>(), 0);
+    EXPECT_LE(two["mdh"]["leaves"].get<int>(), one["mdh"]["leaves"].get<int>());
+    std::printf(
+        "%s: leaves %d -> %d, splits sign conflict %d -> 0, flipped columns %d, "
+        "volume %.4f -> %.4f\n",
+        name, one["mdh"]["leaves"].get<int>(), two["mdh"]["leaves"].get<int>(),
+        one["mdh"]["splits"]["sign_conflict"].get<int>(),
+        two["mdh"]["two_sided"]["flipped_columns"].get<int>(), v1, v2);
+  }
+}
+
 // The stock is cut on several threads with bit-identical results: the report is
 // the same, byte for byte, whatever the thread count (timing aside).
 TEST(CheckExamples, ThreadCountChangesNothingButTime) {

@@ -73,6 +73,22 @@ TEST(JobJson, ChainToleranceIsAtMostTheTolerance) {
   }
 }
 
+TEST(JobJson, TwoSidedMapsAreAnOptionOfThreeWayMaps) {
+  EXPECT_FALSE(jobFromJson(minimalJob()).options.two_sided);
+  json j = minimalJob();
+  j["options"]["two_sided"] = true;
+  EXPECT_TRUE(jobFromJson(j).options.two_sided);
+  j["options"]["three_way"] = false;
+  try {
+    jobFromJson(j);
+    FAIL() << "two_sided without three_way accepted";
+  } catch (const FieldError& e) {
+    EXPECT_EQ(e.field(), "options.two_sided");
+  }
+  j["options"]["two_sided"] = "yes";
+  EXPECT_THROW(jobFromJson(j), FieldError);
+}
+
 TEST(JobJson, WorkOffsetsAndFixtures) {
   json j = minimalJob();
   j["work_offsets"] = {{"G55", {1, 2, 3}}, {"G59.3", {-4, 5, -6}}};

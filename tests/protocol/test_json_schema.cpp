@@ -232,7 +232,7 @@ TEST(JobSchema, ErrorsNameTheField) {
       {"/fixtures/1/cylinder/radius", 0, "fixtures[1].cylinder.radius: must be > 0, got 0"},
       {"/options/colour", "red",
        "options.colour: unknown field (known: chain_tolerance contact_tolerance density ruleset "
-       "seed steps three_way tolerance)"},
+       "seed steps three_way tolerance two_sided)"},
   };
   for (const Case& c : cases) {
     json job = fullJob();
