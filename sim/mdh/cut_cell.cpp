@@ -16,6 +16,7 @@
 #include "sim/mdh/lazy_crossings.h"
 #include "sim/mdh/rng.h"
 #include "sim/mdh/sample_grid.h"
+#include "sim/mdh/two_sided_cut.h"
 #include "sim/mdh/vertex_drops.h"
 #include "sim/mdh/vertex_rule.h"
 
@@ -87,6 +88,26 @@ bool fastCutCell(Cell& cell, const CutContext& ctx) {
     else
       cell.volume = kStaleVolume;
     ctx.counters.touched = true;
+  }
+  return true;
+}
+
+// A two-sided map (no fast path) whose direction still holds the cut: only the
+// columns under the tool unpacked (two_sided_cut.h). False: the slow path's.
+bool twoSidedCutCell(Cell& cell, const CutContext& ctx) {
+  if (!cell.map->hasFlips()) return false;
+  double delta = 0.0;
+  const TwoSidedCut r =
+      twoSidedCut(*cell.map, ctx.cache, ctx.reach, ctx.volumes ? &delta : nullptr);
+  if (r == TwoSidedCut::kInvalid) return false;
+  if (r == TwoSidedCut::kDone) {
+    ctx.counters.touched = true;
+    ctx.counters.removes = true;
+    ctx.counters.slowCuts += 1;  // batches stay one-sided (Stock::cutIfFast)
+    if (ctx.volumes)
+      setVolume(cell, cell.volume + delta, ctx);
+    else
+      cell.volume = kStaleVolume;
   }
   return true;
 }
@@ -303,7 +324,7 @@ void cutLeaf(Cell& cell, const CutContext& ctx, bool fresh) {
     cell.state = CellState::kPartial;
     done = fastCutCell(cell, ctx) || firstCutElsewhere(cell, ctx, d, fresh);
   } else {
-    done = fastCutCell(cell, ctx);
+    done = fastCutCell(cell, ctx) || twoSidedCutCell(cell, ctx);
   }
   if (!done) {
     settlePending(cell, ctx.grid);  // the slow path reads every crossing

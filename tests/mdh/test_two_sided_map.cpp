@@ -1,12 +1,15 @@
 // Two-sided 3-maps (three_map.h, thesis 7.4): columns on both sides of one map,
 // their straddled levels, and the round trip through the sample grid.
 #include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
 #include "sim/mdh/good_bad_map.h"
 #include "sim/mdh/sample_grid.h"
 #include "sim/mdh/three_map.h"
+#include "sim/mdh/two_sided_cut.h"
+#include "tests/mdh/analytic_solids.h"
 
 namespace mdhd::mdh {
 namespace {
@@ -28,8 +31,7 @@ TEST(TwoSidedMap, StraddleOfEveryPairOfColumnsIsTheBruteForceOne) {
         for (bool up1 : {true, false}) {
           const ColumnStraddle s = columnsStraddle(f0, up0, f1, up1, lo, hi);
           const std::vector<int> expected = straddledLevels(f0, up0, f1, up1, lo, hi);
-          ASSERT_EQ(s.total(), static_cast<int>(expected.size()))
-              << f0 << up0 << " " << f1 << up1;
+          ASSERT_EQ(s.total(), static_cast<int>(expected.size())) << f0 << up0 << " " << f1 << up1;
           for (int i = 0; i < s.total(); ++i) {
             EXPECT_EQ(s.level(i), expected[i]);
             EXPECT_EQ(s.indexOf(expected[i]), i);
@@ -147,6 +149,69 @@ TEST(TwoSidedMap, SetHeightUnflipsAndFullColumnsAreNeverFlipped) {
   m.setColumn(1, 1, -3.0, true);  // solid from below the box: full, stored unflipped
   EXPECT_EQ(m.flippedColumns(), 0);
   EXPECT_TRUE(m.allFull());
+}
+
+void expectSameMap(const ThreeMap& a, const ThreeMap& b) {
+  ASSERT_EQ(a.flippedColumns(), b.flippedColumns());
+  for (int iv = 0; iv < a.columnsV(); ++iv)
+    for (int iu = 0; iu < a.columnsU(); ++iu) {
+      ASSERT_EQ(a.height(iu, iv), b.height(iu, iv)) << "column " << iu << "," << iv;
+      ASSERT_EQ(a.flipped(iu, iv), b.flipped(iu, iv)) << "column " << iu << "," << iv;
+    }
+  for (int family = 0; family < 2; ++family)
+    for (int r = 0; r < a.rowCount(family); ++r)
+      ASSERT_EQ(a.row(family, r), b.row(family, r)) << "family " << family << " row " << r;
+}
+
+// twoSidedCut against unpacking the whole map, cutting it and packing it again in
+// its direction: bit for bit, and its volume change that of volume(). Upright tools
+// from above into the columns solid below and from below into the flipped ones.
+TEST(TwoSidedMap, LocalCutMatchesTheWholeCellUnpackedBitForBit) {
+  GridSpec grid;
+  grid.h = 0.1;
+  grid.cubes = {24, 20, 22};
+  const GridBox box{{0, 0, 0}, {24, 20, 22}};
+  for (int sign : {1, -1}) {
+    const Direction dir{2, sign};
+    // Half the map (x < 1.2 mm) carved from the side its direction leaves solid.
+    SampleGrid start = SampleGrid::decode(ThreeMap(box, dir, true), box);
+    const testing::BoxSolid carve(glm::dvec3(-1, -1, sign > 0 ? -1.0 : 1.4),
+                                  glm::dvec3(1.2, 3, sign > 0 ? 0.8 : 3.0));
+    start.applyCut(IntervalCache(grid, carve));
+    ThreeMap map = encodeMap(start, dir, true, true);
+    ASSERT_GT(map.flippedColumns(), 100);
+    std::mt19937_64 rng(7 + sign);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int done = 0, invalid = 0;
+    for (int step = 0; step < 120; ++step) {
+      // From above (axis +z, tip going down) or from below.
+      const bool fromAbove = unit(rng) < 0.5;
+      const glm::dvec3 axis(0.2 * (unit(rng) - 0.5), 0.2 * (unit(rng) - 0.5), fromAbove ? 1 : -1);
+      glm::dvec3 tip(2.4 * unit(rng), 2.0 * unit(rng), 0.0);
+      const double depth = 0.5 * unit(rng);
+      tip.z = fromAbove ? 2.2 - depth : depth;
+      const double r = 0.15 + 0.3 * unit(rng);
+      const auto tool = unit(rng) < 0.5 ? testing::ballMill(tip, glm::normalize(axis), r, 6.0)
+                                        : testing::flatMill(tip, glm::normalize(axis), r, 6.0);
+      const IntervalCache cache(grid, *tool);
+      const ThreeMap before = map;
+      double delta = 0.0;
+      const TwoSidedCut result = twoSidedCut(map, cache, cache.touched(), &delta);
+      if (result == TwoSidedCut::kInvalid) {
+        ++invalid;
+        expectSameMap(map, before);
+        continue;
+      }
+      SampleGrid g = SampleGrid::decode(before, box);
+      g.applyCut(cache);
+      ThreeMap whole = encodeMap(g, dir, true, true);
+      expectSameMap(map, whole);
+      EXPECT_NEAR(delta, map.volume() - before.volume(), 1e-9 * (1.0 + box.pointCount()));
+      done += result == TwoSidedCut::kDone;
+    }
+    EXPECT_GT(done, 15) << "sign " << sign;  // the comparison really ran
+    EXPECT_GT(invalid, 0) << "sign " << sign;
+  }
 }
 
 }  // namespace
