@@ -34,7 +34,7 @@ struct JobOptions {
   std::uint64_t seed = 1;
   bool three_way = true;
   // Two-sided 3-maps (mdhd extension; thesis 7.4): fewer cell splits, same stock.
-  bool two_sided = false;
+  bool two_sided = true;
   std::optional<double> contact_tolerance;  // default: half the grid spacing
   double contactTolerance() const { return contact_tolerance.value_or(0.5 / density); }
   // Raster chains' points dropped within this (mm; mdhd extension): default half of

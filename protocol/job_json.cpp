@@ -108,9 +108,13 @@ JobOptions options(const json& j, const std::string& field) {
     o.seed = v->get<std::uint64_t>();
   }
   if (const json* v = optional(j, "three_way")) o.three_way = boolean(*v, field + ".three_way");
-  if (const json* v = optional(j, "two_sided")) o.two_sided = boolean(*v, field + ".two_sided");
-  if (o.two_sided && !o.three_way) {
-    throw FieldError(field + ".two_sided", "needs three_way (two-sided maps are 3-maps)");
+  if (const json* v = optional(j, "two_sided")) {
+    o.two_sided = boolean(*v, field + ".two_sided");
+    if (o.two_sided && !o.three_way) {
+      throw FieldError(field + ".two_sided", "needs three_way (two-sided maps are 3-maps)");
+    }
+  } else {
+    o.two_sided = o.three_way;  // plain heightmaps are one-sided
   }
   if (const json* v = optional(j, "contact_tolerance")) {
     const double t = number(*v, field + ".contact_tolerance");

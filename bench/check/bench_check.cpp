@@ -7,11 +7,11 @@
 //
 //   bench_check [--densities 5,10,20] [--no-freecad] [--smoke] [--threads N] [--only 3|5]
 //               [--passes K] [--first-pass J] [--batch B] [--plain] [--eager-crossings]
-//               [--two-sided]
+//               [--one-sided]
 // --plain: plain heightmaps instead of 3-way ones (job option three_way false: no
 // crossings on the edges across the map's direction, so no x and y lines to ask);
 // --eager-crossings: every batch computes its crossings at once (lazy_crossings off);
-// --two-sided: two-sided 3-maps (job option two_sided);
+// --one-sided: one-sided 3-maps (job option two_sided false);
 // --batch: feed steps cut at once (check::SimulationOptions::batch_steps; 1: one by one);
 // --threads: threads cutting and meshing the stock (default 1); --only: just the 3-axis
 // or the 5-axis dome; --passes: only K zigzag passes (a slice for profiling; no FreeCAD
@@ -316,13 +316,13 @@ int main(int argc, char** argv) {
       options.three_way = false;
     else if (a == "--eager-crossings")
       options.lazy_crossings = false;
-    else if (a == "--two-sided")
-      options.two_sided = true;
+    else if (a == "--one-sided")
+      options.two_sided = false;
     else {
       std::fprintf(stderr,
                    "usage: bench_check [--densities 5,10,20] [--no-freecad] [--smoke] "
                    "[--threads N] [--only 3|5] [--passes K] [--first-pass J] [--batch B] [--plain] "
-                   "[--brick-z Z] [--chain-tolerance T] [--eager-crossings] [--two-sided]\n");
+                   "[--brick-z Z] [--chain-tolerance T] [--eager-crossings] [--one-sided]\n");
       return 2;
     }
   }

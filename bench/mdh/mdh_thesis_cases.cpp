@@ -5,14 +5,14 @@
 // ruleset runs with seeds 1..N and prints min and (upper) median.
 //   mdh_thesis_cases [--density 100] [--seeds 3] [--rulesets few|table66|all]
 //                    [--ruleset FEFS-FFS,CTD,SPT,RS]... [--cases CS,D1,...]
-//                    [--cuts-per-motion 1] [--degrees-per-motion 5] [--two-sided] [--smoke]
+//                    [--cuts-per-motion 1] [--degrees-per-motion 5] [--one-sided] [--smoke]
 // --ruleset R (repeatable) runs the named rulesets instead of --rulesets.
 // --cuts-per-motion k: each motion cut as k swept pieces (10 = the thesis's
 // in-between steps as separate cuts; 1 = one swept volume per motion).
 // --degrees-per-motion a: the turn of one motion of D1, D2, DS1, DS2 (lost with
 // the thesis's figures; a calibration knob like DS's pitch).
-// --two-sided: two-sided 3-maps (StockOptions::two_sided, thesis 7.4): a sign
-// conflict alone splits no cell.
+// --one-sided: one-sided 3-maps, the thesis's own (StockOptions::two_sided off; two-sided
+// maps, thesis 7.4, are the default: a sign conflict alone splits no cell).
 // --smoke: density 25, one seed, three rulesets; exits 1 if a result is wrong.
 #include <algorithm>
 #include <cmath>
@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
   std::string rulesetChoice = "few", caseFilter;
   std::vector<std::string> named;
   bool smoke = false;
-  bool twoSided = false;
+  bool twoSided = true;
   int cutsPerMotion = 1;
   double donutDegrees = 5;
   for (int i = 1; i < argc; ++i) {
@@ -152,8 +152,8 @@ int main(int argc, char** argv) {
       donutDegrees = std::atof(next), ++i;
     else if (a == "--smoke")
       smoke = true;
-    else if (a == "--two-sided")
-      twoSided = true;
+    else if (a == "--one-sided")
+      twoSided = false;
     else {
       std::fprintf(stderr, "mdh_thesis_cases: unknown argument '%s'\n", a.c_str());
       return 2;

@@ -40,7 +40,7 @@ struct SimulationOptions {
                                  mdh::Rule::kRS};
   std::uint64_t seed = 1;
   bool three_way = true;
-  bool two_sided = false;           // mdh::StockOptions::two_sided
+  bool two_sided = true;            // mdh::StockOptions::two_sided
   double contact_tolerance = -1.0;  // < 0: half the grid spacing
   int threads = 1;                  // stock cutting threads (0: hardware concurrency)
   // Feed steps translating one cutter along a chain are cut up to this many at once

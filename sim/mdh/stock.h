@@ -34,7 +34,7 @@ struct StockOptions {
   bool three_way = true;
   // Two-sided 3-maps (thesis 7.4, three_map.h): a column may hold its solid on the
   // far side, so a sign conflict alone no longer splits a cell. 3-maps only.
-  bool two_sided = false;
+  bool two_sided = true;
   std::vector<Rule> ruleset{Rule::kFEFS_FFS, Rule::kCTD, Rule::kSPT, Rule::kRS};
   std::uint64_t seed = 1;
   int threads = 0;  // 0: hardware concurrency

@@ -100,16 +100,29 @@ double ThreeMap::profileIntegral(int f0, int f1, double len0, double len1, int e
   return polylineIntegral(len0, len1, pts.data(), pts.size());
 }
 
-// An edge between columns on opposite sides. Where their solids do not overlap in
-// level (the up column's below, the down column's above, a gap between), the edge's
-// solid is two profiles, each a column's solid against an empty one: the up column's
-// with the straddle's low run of crossings, the down column's with its high run. Where
-// they overlap the crossings cannot tell the two apart: the plain map's trapezoid.
+// An edge between columns on opposite sides (the up column's solid from the low face,
+// the down column's from the high one), its crossings the straddle's low run (only the
+// up column solid there) then its high run. Solids apart in level (a gap between): two
+// profiles, each a column's solid against an empty column. Solids overlapping (a band
+// solid across the edge): the edge's length less two empty profiles, the down column's
+// empty run below it against the low run and the up column's above it against the high
+// run. Each profile is a one-sided edge's, so as exact as one.
 double ThreeMap::mixedEdgeIntegral(int f0, int f1, double len0, double len1, bool up0,
                                    int edgeStart, const double* crossings) const {
-  const int fu = up0 ? f0 : f1, fd = up0 ? f1 : f0;
-  if (!threeWay_ || crossings == nullptr || fu + fd > levels()) return 0.5 * (len0 + len1);
+  const int fu = up0 ? f0 : f1, fd = up0 ? f1 : f0, n = levels();
+  if (!threeWay_ || crossings == nullptr) return 0.5 * (len0 + len1);
   const double lu = up0 ? len0 : len1, ld = up0 ? len1 : len0;
+  if (fu + fd > n) {
+    const double length = box_.hi[dir_.axis] - box_.lo[dir_.axis];
+    const int eu = n - fd, ed = n - fu;  // the empty runs' counts
+    const double* high = crossings + eu;
+    const double emptyLow =
+        up0 ? profileIntegral(0, eu, 0.0, length - ld, edgeStart, crossings, true)
+            : profileIntegral(eu, 0, length - ld, 0.0, edgeStart, crossings, true);
+    const double emptyHigh = up0 ? profileIntegral(ed, 0, length - lu, 0.0, edgeStart, high, false)
+                                 : profileIntegral(0, ed, 0.0, length - lu, edgeStart, high, false);
+    return length - emptyLow - emptyHigh;
+  }
   // Crossings ascend by level: the up column's run (fu of them) first.
   const double upPart = up0 ? profileIntegral(fu, 0, lu, 0.0, edgeStart, crossings, true)
                             : profileIntegral(0, fu, 0.0, lu, edgeStart, crossings, true);

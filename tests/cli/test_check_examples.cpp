@@ -180,14 +180,14 @@ TEST(CheckExamples, PlainMapsHoldTheExamplesWithinOneSpacing) {
   EXPECT_EQ(got, want) << tolerant.report["collisions"].dump(2);
 }
 
-// Two-sided maps (options.two_sided) are the same stock in fewer cells: the same
-// collisions at the same lines, the same volume up to the mixed columns' trapezoids,
-// and no sign conflict split.
+// Two-sided maps (options.two_sided, the default) are the same stock in fewer cells
+// than one-sided ones: the same collisions at the same lines, the same volume up to
+// the integration of columns on opposite sides, and no sign conflict split.
 TEST(CheckExamples, TwoSidedMapsFindTheSameCollisions) {
   for (const char* name : {"crash-3axis.json", "side-drill-ac.json", "donut-bc.json"}) {
     SCOPED_TRACE(name);
-    const json one = check(example(name)).report;
-    const json two = check(exampleWith(name, {{"two_sided", true}})).report;
+    const json one = check(exampleWith(name, {{"two_sided", false}})).report;
+    const json two = check(example(name)).report;
     const auto collisions = [](const json& report) {
       std::set<std::pair<std::string, int>> out;
       for (const json& e : report["collisions"])
@@ -198,7 +198,9 @@ TEST(CheckExamples, TwoSidedMapsFindTheSameCollisions) {
     EXPECT_EQ(two["status"], one["status"]);
     const double v1 = one["stats"]["final_volume_mm3"].get<double>();
     const double v2 = two["stats"]["final_volume_mm3"].get<double>();
-    EXPECT_NEAR(v2, v1, 1e-4 * v1);
+    // The integrations differ only across columns on opposite sides: 1.0e-4 of the
+    // donut's volume (50 grid cubes at its density 32); the bound is three times that.
+    EXPECT_NEAR(v2, v1, 3e-4 * v1);
     EXPECT_EQ(two["mdh"]["splits"]["sign_conflict"].get<int>(), 0);
     EXPECT_LE(two["mdh"]["leaves"].get<int>(), one["mdh"]["leaves"].get<int>());
     std::printf(

@@ -22,6 +22,7 @@ struct Case {
   bool threeWay;
   int brick;
   double density;
+  bool twoSided = true;  // StockOptions' default (3-maps only)
 };
 
 // Random 5-axis moves from every side with every tool shape; after each one
@@ -30,6 +31,7 @@ std::int64_t cutAndCheck(const Case& c, int count) {
   StockOptions o;
   o.density = c.density;
   o.three_way = c.threeWay;
+  o.two_sided = c.twoSided;
   o.brick = c.brick;
   o.threads = 1;
   o.seed = c.seed;
@@ -73,23 +75,30 @@ INSTANTIATE_TEST_SUITE_P(Seeds, SharedSamples, ::testing::ValuesIn(cases()), [](
 });
 
 // Forced one-cube cells drop vertices their neighbours hold (sub-grid
-// features): the drops reach every neighbour.
+// features): the drops reach every neighbour. One-sided maps force cells on this
+// seed; two-sided ones hold the same cuts without.
 TEST(SharedSamples, ForcedDropsReachTheNeighbours) {
-  EXPECT_GT(cutAndCheck({4, true, 8, 5.0}, 10), 0);
-  EXPECT_GT(cutAndCheck({4, false, 8, 5.0}, 10), 0);
+  EXPECT_GT(cutAndCheck({4, true, 8, 5.0, false}, 10), 0);
+  EXPECT_GT(cutAndCheck({4, false, 8, 5.0, false}, 10), 0);
+  EXPECT_EQ(cutAndCheck({4, true, 8, 5.0, true}, 10), 0);
 }
 
 // The donut of thesis figure 6.13 at density 4: its groove is about one cell
-// wide, so cells are forced there; plain heightmaps and 3-maps.
+// wide, so one-sided maps force cells there (plain heightmaps and 3-maps);
+// two-sided 3-maps hold it without.
 TEST(SharedSamples, DonutAtDensityFour) {
-  for (bool threeWay : {true, false}) {
+  for (int kind = 0; kind < 3; ++kind) {
     StockOptions o;
     o.density = 4;
-    o.three_way = threeWay;
+    o.three_way = kind > 0;
+    o.two_sided = kind == 2;
     o.threads = 2;
     Stock stock({{0, 0, 0}, {4, 4, 1}}, o);
     mesh::bench::cutDonut(stock, mesh::bench::Donut{}, 100, 10);
-    EXPECT_GT(stock.stats().forcedVertices, 0) << threeWay;
+    if (kind < 2)
+      EXPECT_GT(stock.stats().forcedVertices, 0) << kind;
+    else
+      EXPECT_EQ(stock.stats().forcedVertices, 0);
     for (const auto& d : sharedSampleDisagreements(stock, 4)) ADD_FAILURE() << d.describe();
   }
 }

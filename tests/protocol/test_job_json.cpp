@@ -74,8 +74,13 @@ TEST(JobJson, ChainToleranceIsAtMostTheTolerance) {
 }
 
 TEST(JobJson, TwoSidedMapsAreAnOptionOfThreeWayMaps) {
-  EXPECT_FALSE(jobFromJson(minimalJob()).options.two_sided);
+  EXPECT_TRUE(jobFromJson(minimalJob()).options.two_sided);  // the default
   json j = minimalJob();
+  j["options"]["three_way"] = false;  // plain heightmaps are one-sided unless asked
+  EXPECT_FALSE(jobFromJson(j).options.two_sided);
+  j["options"]["three_way"] = true;
+  j["options"]["two_sided"] = false;
+  EXPECT_FALSE(jobFromJson(j).options.two_sided);
   j["options"]["two_sided"] = true;
   EXPECT_TRUE(jobFromJson(j).options.two_sided);
   j["options"]["three_way"] = false;
