@@ -181,9 +181,22 @@ double SampleGrid::columnHeight(Direction d, int cu, int cv) const {
   return std::clamp(c, std::nextafter(double(k - 1), kInf), double(k));
 }
 
+void appendEdgeCrossings(const SampleGrid& g, const ThreeMap& map, const ColumnStraddle& st, int x,
+                         int edge, int y, int row, double h0, double h1, std::vector<double>& out) {
+  for (int i = 0; i < st.total(); ++i) {
+    std::array<int, 3> p{};
+    p[map.axis()] = st.level(i);
+    p[x] = edge;
+    p[y] = row;
+    double value = g.crossing(x, g.index(p));
+    if (std::isnan(value)) value = map.interpolatedCrossing(h0, h1, edge, p[map.axis()]);
+    out.push_back(value);
+  }
+}
+
 ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay, bool twoSided) {
   ThreeMap map(g.box(), d, threeWay);
-  const int a = d.axis, u = map.uAxis(), v = map.vAxis();
+  const int u = map.uAxis(), v = map.vAxis();
   const GridBox& box = g.box();
   const Direction flip{d.axis, -d.sign};
   for (int cv = box.lo[v]; cv <= box.hi[v]; ++cv)
@@ -199,17 +212,9 @@ ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay, bool twoSide
     for (int r = 0; r < map.rowCount(family); ++r) {
       std::vector<double>& dst = map.row(family, r);
       for (int e = 0; e < map.edgesInRow(family); ++e) {
-        const double h0 = map.rowHeight(family, r, e), h1 = map.rowHeight(family, r, e + 1);
-        const ColumnStraddle st = map.straddleEdge(family, r, e);
-        for (int i = 0; i < st.total(); ++i) {
-          std::array<int, 3> p{};
-          p[a] = st.level(i);
-          p[x] = box.lo[x] + e;
-          p[y] = box.lo[y] + r;
-          double value = g.crossing(x, g.index(p));
-          if (std::isnan(value)) value = map.interpolatedCrossing(h0, h1, p[x], p[a]);
-          dst.push_back(value);
-        }
+        appendEdgeCrossings(g, map, map.straddleEdge(family, r, e), x, box.lo[x] + e, y,
+                            box.lo[y] + r, map.rowHeight(family, r, e),
+                            map.rowHeight(family, r, e + 1), dst);
       }
       dst.shrink_to_fit();
     }

@@ -65,6 +65,13 @@ class SampleGrid {
   bool changed_ = false;
 };
 
+// Appends the crossings g holds on a map's grid edge at the levels `st` lists: the
+// edge along axis x from coordinate `edge`, in the row at coordinate `row` on axis y
+// (x, y: the map's u and v axes in either order); h0, h1 are the edge's two column
+// heights, for the interpolated crossing where g has none.
+void appendEdgeCrossings(const SampleGrid& g, const ThreeMap& map, const ColumnStraddle& st, int x,
+                         int edge, int y, int row, double h0, double h1, std::vector<double>& out);
+
 // Packs a whole cell (g covers the cell's box) into a heightmap in direction d;
 // every line along d.axis must be valid for d, or, `twoSided`, for d or its
 // opposite (those valid only for the opposite become flipped columns).

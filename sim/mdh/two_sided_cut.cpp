@@ -78,16 +78,8 @@ TwoSidedCut twoSidedCut(ThreeMap& map, const IntervalCache& cache, const GridBox
           const Column& c1 = column(ub, vb);
           const ColumnStraddle st = columnsStraddle(c0.count, (d.sign > 0) != c0.flipped, c1.count,
                                                     (d.sign > 0) != c1.flipped, lo, hi);
-          for (int i = 0; i < st.total(); ++i) {
-            std::array<int, 3> p{};
-            p[a] = st.level(i);
-            p[x] = box.lo[x] + e;
-            p[y] = box.lo[y] + r;
-            double value = g.crossing(x, g.index(p));
-            if (std::isnan(value))
-              value = map.interpolatedCrossing(c0.height, c1.height, p[x], p[a]);
-            out.push_back(value);
-          }
+          appendEdgeCrossings(g, map, st, x, box.lo[x] + e, y, box.lo[y] + r, c0.height, c1.height,
+                              out);
         }
         out.shrink_to_fit();
         rows[family].push_back(std::move(out));
