@@ -60,7 +60,7 @@ bool fastCutCell(Cell& cell, const CutContext& ctx) {
   // Lazy crossings need the cells' volumes stale anyway (no per-step volumes) and a
   // z map, whose z lines (the probes') are its parent heights alone.
   const ThreeMap& m = *cell.map;
-  if (m.hasFlips()) return false;  // two-sided columns: the slow path's
+  if (m.hasFlips()) return false;  // columns on both sides: twoSidedCutCell's
   if (ctx.lazySolid && !ctx.volumes && m.threeWay() && m.axis() == 2) {
     if (!cell.pending) cell.pending = std::make_unique<PendingCuts>();
     bool columns = false;
@@ -234,13 +234,13 @@ void slowCut(Cell& cell, const CutContext& ctx, bool fresh) {
   const Direction old = cell.map->direction();
   SampleGrid g = SampleGrid::decode(*cell.map, cell.box);
   g.applyCut(ctx.cache, &ctx.reach);
-  // A two-sided map comes here for every cut that reaches it (fastCutCell): only a
-  // new direction or a split is an overhang event there.
+  // A two-sided map comes here when a column under the tool holds two crossings
+  // (twoSidedCutCell): only a new direction or a split is an overhang event then.
   const bool twoSidedCell = cell.map->hasFlips();
   if (twoSidedCell && !g.changed()) return;
   ctx.counters.slowCuts += 1;
   ctx.counters.touched = true;
-  ctx.counters.removes = true;  // an overhang (or a two-sided cell's cut): material went
+  ctx.counters.removes = true;  // the cut removed what held the old surface
   markUnresolved(g, old, cell.map.get(), ctx.twoSided);
   const GoodBadMap maps[3] = {buildGoodBadMap(g, 0), buildGoodBadMap(g, 1), buildGoodBadMap(g, 2)};
   Direction d;
