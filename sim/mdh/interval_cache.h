@@ -22,6 +22,10 @@
 
 namespace mdhd::mdh {
 
+// A tool's chord along a line narrower than this (grid units) is dropped: a line that
+// grazes a curved surface gets a width of rounding noise (interval_cache.cpp).
+inline constexpr double kMinToolSpan = 1e-4;
+
 class LineStore {
  public:
   LineStore();

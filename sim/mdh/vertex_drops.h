@@ -16,7 +16,8 @@
 
 namespace mdhd::mdh {
 
-inline constexpr double kDropHalfWidth = 1e-6;
+// Wider than IntervalCache's grazing chords (kMinToolSpan), which it drops.
+inline constexpr double kDropHalfWidth = 1e-3;
 
 class VertexDrops final : public geom::LineSolid {
  public:
