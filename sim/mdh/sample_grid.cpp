@@ -194,15 +194,26 @@ void appendEdgeCrossings(const SampleGrid& g, const ThreeMap& map, const ColumnS
   }
 }
 
+bool SampleGrid::twoSidedColumn(Direction d, int cu, int cv, double& height, bool& flipped) const {
+  flipped = !columnValid(d, cu, cv);
+  if (flipped) {
+    d.sign = -d.sign;
+    if (!columnValid(d, cu, cv)) return false;
+  }
+  height = columnHeight(d, cu, cv);
+  return true;
+}
+
 ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay, bool twoSided) {
   ThreeMap map(g.box(), d, threeWay);
   const int u = map.uAxis(), v = map.vAxis();
   const GridBox& box = g.box();
-  const Direction flip{d.axis, -d.sign};
   for (int cv = box.lo[v]; cv <= box.hi[v]; ++cv)
     for (int cu = box.lo[u]; cu <= box.hi[u]; ++cu) {
-      if (twoSided && !g.columnValid(d, cu, cv))
-        map.setColumn(cu - box.lo[u], cv - box.lo[v], g.columnHeight(flip, cu, cv), true);
+      double h = 0.0;
+      bool flipped = false;
+      if (twoSided && g.twoSidedColumn(d, cu, cv, h, flipped))
+        map.setColumn(cu - box.lo[u], cv - box.lo[v], h, flipped);
       else
         map.setHeight(cu - box.lo[u], cv - box.lo[v], g.columnHeight(d, cu, cv));
     }

@@ -56,6 +56,9 @@ class SampleGrid {
   bool columnValid(Direction d, int u, int v) const;
   // Height of the column along d.axis through (u, v) on axes axisU/axisV of d.
   double columnHeight(Direction d, int u, int v) const;
+  // The same for a two-sided map in direction d: the column on d's side if d holds
+  // it, else flipped if the opposite side does; false if neither does.
+  bool twoSidedColumn(Direction d, int u, int v, double& height, bool& flipped) const;
 
  private:
   GridBox box_;

@@ -71,9 +71,8 @@ double polylineIntegral(double len0, double len1, const Point* pts, std::size_t 
 
 }  // namespace
 
-// f0, f1: the two columns' solid counts; len0, len1: their solid lengths.
-// up: the side both columns are on (an edge between columns on opposite sides is
-// integrated as a plain map's, from its two lengths).
+// f0, f1: the two columns' solid counts; len0, len1: their solid lengths; up: the
+// side both columns are on (columns on opposite sides: mixedEdgeIntegral).
 double ThreeMap::profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
                                  const double* crossings, bool up) const {
   const int a = dir_.axis;

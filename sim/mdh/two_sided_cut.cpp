@@ -24,7 +24,7 @@ TwoSidedCut twoSidedCut(ThreeMap& map, const IntervalCache& cache, const GridBox
   SampleGrid g = SampleGrid::decode(map, sub);
   g.applyCut(cache, &reach);
   if (!g.changed()) return TwoSidedCut::kUnchanged;
-  const Direction d = map.direction(), flip{a, -d.sign};
+  const Direction d = map.direction();
   const int iu0 = sub.lo[u] - box.lo[u], iu1 = sub.hi[u] - box.lo[u];
   const int iv0 = sub.lo[v] - box.lo[v], iv1 = sub.hi[v] - box.lo[v];
   const int nu = iu1 - iu0 + 1;
@@ -38,9 +38,7 @@ TwoSidedCut twoSidedCut(ThreeMap& map, const IntervalCache& cache, const GridBox
   for (int cv = sub.lo[v]; cv <= sub.hi[v]; ++cv)
     for (int cu = sub.lo[u]; cu <= sub.hi[u]; ++cu) {
       Column& c = cols[static_cast<std::size_t>(cv - sub.lo[v]) * nu + (cu - sub.lo[u])];
-      c.flipped = !g.columnValid(d, cu, cv);
-      if (c.flipped && !g.columnValid(flip, cu, cv)) return TwoSidedCut::kInvalid;
-      c.height = g.columnHeight(c.flipped ? flip : d, cu, cv);
+      if (!g.twoSidedColumn(d, cu, cv, c.height, c.flipped)) return TwoSidedCut::kInvalid;
       c.count = columnSolidCount(c.height, lo, hi, (d.sign > 0) != c.flipped);
       if (c.count == 0 || c.count == hi - lo + 1) c.flipped = false;  // as setColumn stores it
     }
