@@ -79,19 +79,19 @@ thread_local std::vector<std::uint8_t> SideVertexRule::done_, SideVertexRule::go
 // the map (its vector, sizes, box, direction) would be loaded again.
 struct Columns {
   explicit Columns(const ThreeMap& m)
-      : h(m.heightData()),
+      : h(m.heights()),
         nu(m.columnsU()),
         lo(m.box().lo[m.axis()]),
         hi(m.box().hi[m.axis()]),
         up(m.direction().sign > 0) {}
-  double at(int iu, int iv) const { return h[iv * nu + iu]; }
+  double at(int iu, int iv) const { return h.get(iu, iv); }
   double rowHeight(int family, int r, int e) const { return family == 0 ? at(e, r) : at(r, e); }
   int solidCount(double x) const { return columnSolidCount(x, lo, hi, up); }
   void straddleCounts(int f1, int f2, int& first, int& count) const {
     columnStraddle(f1, f2, lo, hi, up, first, count);
   }
 
-  const double* h;
+  TileReader h;
   int nu, lo, hi;
   bool up;
 };
@@ -554,7 +554,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
     const std::size_t columns = static_cast<std::size_t>(map.columnsU()) * map.columnsV();
     s.counts.resize(columns);
     int* counts = s.counts.data();
-    for (std::size_t i = 0; i < columns; ++i) counts[i] = cols.solidCount(cols.h[i]);
+    map.solidCounts(counts);
     // x and y lines in batches where the solid answers them so (3-axis batches).
     const bool batches[2] = {cache.linesPay(u), cache.linesPay(v)};
     if (batches[0] || batches[1]) columnsAfterCut(map, s);
@@ -621,7 +621,7 @@ void cutLazily(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   const Columns cols(map);
   const std::size_t columns = static_cast<std::size_t>(map.columnsU()) * map.columnsV();
   s.counts.resize(columns);
-  for (std::size_t i = 0; i < columns; ++i) s.counts[i] = cols.solidCount(cols.h[i]);
+  map.solidCounts(s.counts.data());
   columnsAfterCut(map, s);
   // The pending cuts' crossings first, on the heights they left, where this cut keeps them.
   advanceCrossings(map, pending, cache.grid(), s.counts.data(), s.newCountsMap.data());

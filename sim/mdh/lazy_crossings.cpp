@@ -131,8 +131,7 @@ void resolve(ThreeMap& map, const PendingCuts& pending, const GridSpec& grid, co
   thread_local std::vector<int> lineU, lineV;
   if (now == nullptr) {
     counts.resize(columns);
-    const double* h = map.heightData();
-    for (std::size_t i = 0; i < columns; ++i) counts[i] = map.solidCount(h[i]);
+    map.solidCounts(counts.data());
     now = counts.data();
   }
   bool any = false;

@@ -36,7 +36,6 @@ double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* 
   const int edge = p[axis] - b.lo[axis];
   std::size_t pos = 0;
   for (int e = 0;; ++e) {
-    const double h0 = m.rowHeight(family, r, e), h1 = m.rowHeight(family, r, e + 1);
     const ColumnStraddle st = m.straddleEdge(family, r, e);
     if (e < edge) {
       pos += st.total();
@@ -44,7 +43,9 @@ double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* 
     }
     const int at = st.indexOf(p[a]);
     if (at < 0) return none;
-    if (!m.threeWay()) return m.interpolatedCrossing(h0, h1, p[axis], p[a]);
+    if (!m.threeWay())
+      return m.interpolatedCrossing(m.rowHeight(family, r, e), m.rowHeight(family, r, e + 1),
+                                    p[axis], p[a]);
     return m.row(family, r)[pos + static_cast<std::size_t>(at)];
   }
 }

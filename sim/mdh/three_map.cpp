@@ -14,7 +14,7 @@ ThreeMap::ThreeMap(const GridBox& box, Direction dir, bool threeWay)
       nu_(box.points(axisU(dir.axis))),
       nv_(box.points(axisV(dir.axis))),
       fullColumns_(nu_ * nv_) {
-  heights_.assign(static_cast<std::size_t>(nu_) * nv_, fullHeight());
+  columns_ = ColumnTiles(nu_, nv_, fullHeight(), emptyHeight());
   if (threeWay_) {
     rows_[0].resize(nv_);
     rows_[1].resize(nu_);
@@ -22,21 +22,19 @@ ThreeMap::ThreeMap(const GridBox& box, Direction dir, bool threeWay)
 }
 
 void ThreeMap::setColumn(int iu, int iv, double h, bool flip) {
-  const std::size_t i = static_cast<std::size_t>(iv) * nu_ + iu;
   const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
-  const bool was = flips_ > 0 && flip_[i] != 0;
-  const int before = columnSolidCount(heights_[i], lo, hi, (dir_.sign > 0) != was);
+  const bool was = flipped(iu, iv);
+  const int before = columnSolidCount(height(iu, iv), lo, hi, (dir_.sign > 0) != was);
   const int after = columnSolidCount(h, lo, hi, (dir_.sign > 0) != flip);
   if (after == 0 || after == levels()) {
     h = after == 0 ? emptyHeight() : fullHeight();
     flip = false;
   }
-  if (flip != was) {
-    if (flip_.empty()) flip_.assign(heights_.size(), 0);
-    flip_[i] = flip ? 1 : 0;
-    flips_ += flip ? 1 : -1;
-  }
-  setHeight(iu, iv, h, before, after);
+  if (flip != was) flips_ += flip ? 1 : -1;
+  const int n = levels();
+  fullColumns_ += (after == n) - (before == n);
+  emptyColumns_ += (after == 0) - (before == 0);
+  columns_.set(iu, iv, h, flip);
 }
 
 void ThreeMap::straddle(double h1, double h2, int& first, int& count) const {
@@ -142,15 +140,20 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
   // once per column; the walk up to e0 only sums how many crossings to skip.
   thread_local std::vector<int> counts;
   thread_local std::vector<std::uint8_t> ups;
+  thread_local std::vector<double> lengths;
+  const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
   auto rowSum = [&](int family, int r, int e0, int e1) {
     counts.resize(e1 + 1);
     ups.resize(e1 + 1);
+    lengths.resize(e1 + 1);
     for (int e = 0; e <= e1; ++e) {
       const int iu = family == 0 ? e : r, iv = family == 0 ? r : e;
-      counts[e] = columnCount(iu, iv);
-      ups[e] = columnUp(iu, iv);
+      bool up = false;
+      const double h = column(iu, iv, up);
+      counts[e] = columnSolidCount(h, lo, hi, up);
+      ups[e] = up;
+      lengths[e] = lengthOf(h, up);
     }
-    const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
     const auto crossingsAt = [&](int e) {
       return columnsStraddle(counts[e], ups[e], counts[e + 1], ups[e + 1], lo, hi).total();
     };
@@ -160,8 +163,7 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
     const double* row = threeWay_ ? rows_[family][r].data() : nullptr;
     double sum = 0.0;
     for (int e = e0; e < e1; ++e) {
-      const double len0 = lengthOf(rowHeight(family, r, e), ups[e]);
-      const double len1 = lengthOf(rowHeight(family, r, e + 1), ups[e + 1]);
+      const double len0 = lengths[e], len1 = lengths[e + 1];
       // Full and empty columns are unflipped: opposite sides mean crossings at both ends.
       if (ups[e] != ups[e + 1])
         sum += mixedEdgeIntegral(counts[e], counts[e + 1], len0, len1, ups[e] != 0, base + e,
@@ -187,7 +189,7 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
 }
 
 std::size_t ThreeMap::memoryBytes() const {
-  std::size_t bytes = sizeof(ThreeMap) + heights_.capacity() * sizeof(double) + flip_.capacity();
+  std::size_t bytes = sizeof(ThreeMap) + columns_.memoryBytes();
   for (const auto& family : rows_) {
     bytes += family.capacity() * sizeof(std::vector<double>);
     for (const auto& r : family) bytes += r.capacity() * sizeof(double);

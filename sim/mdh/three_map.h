@@ -2,8 +2,9 @@
 // A partial cell's surface: a (3-way) heightmap in one of six directions.
 //
 // Parent heights: one per column (grid line along the direction axis through
-// the cell's cross-section), dense, an absolute grid coordinate along the
-// column. For +a the vertices k <= H are solid; for -a those with k >= H. An
+// the cell's cross-section), an absolute grid coordinate along the column, kept
+// in tiles that cost nothing while all their columns are full or all empty
+// (column_tiles.h). For +a the vertices k <= H are solid; for -a those with k >= H. An
 // empty column stores -inf (+a) or +inf (-a), so the solid vertex count always
 // follows from H alone.
 //
@@ -25,6 +26,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "sim/mdh/column_tiles.h"
 #include "sim/mdh/direction.h"
 #include "sim/mdh/grid.h"
 
@@ -104,41 +106,61 @@ class ThreeMap {
   int columnsV() const { return nv_; }
   int levels() const { return box_.points(dir_.axis); }
 
-  double height(int iu, int iv) const { return heights_[iv * nu_ + iu]; }
-  // All parent heights, row-major (iv * columnsU() + iu): the pointer lives as long
-  // as the map; setHeight changes what it reads.
-  const double* heightData() const { return heights_.data(); }
+  double height(int iu, int iv) const { return columns_.get(iu, iv); }
+  // The parent heights for hot loops: valid until the next setHeight / setColumn.
+  TileReader heights() const { return columns_.reader(); }
+  // solidCount(height) of every column, row-major (iv * columnsU() + iu): a map
+  // without flips, its columns' solid counts.
+  void solidCounts(int* out) const {
+    columns_.forEachRowMajor(out, [this](double h) { return solidCount(h); });
+  }
   // An unflipped column (a flipped one loses its flip).
   void setHeight(int iu, int iv, double h) {
-    if (flips_ > 0 && flip_[iv * nu_ + iu]) {
+    if (flipped(iu, iv)) {
       setColumn(iu, iv, h, false);
       return;
     }
-    setHeight(iu, iv, h, solidCount(heights_[iv * nu_ + iu]), solidCount(h));
+    setHeight(iu, iv, h, solidCount(height(iu, iv)), solidCount(h));
   }
   // Two-sided maps: a column's height and side (`flip`: solid on the far side). A
   // full or empty column is stored unflipped.
   void setColumn(int iu, int iv, double h, bool flip);
   bool hasFlips() const { return flips_ > 0; }
   int flippedColumns() const { return flips_; }
-  bool flipped(int iu, int iv) const { return flips_ > 0 && flip_[iv * nu_ + iu] != 0; }
-  // Whether the column's solid runs from the low face (the +a side).
+  bool flipped(int iu, int iv) const { return flips_ > 0 && columns_.flipped(iu, iv); }
+  // A column's height and whether its solid runs from the low face (the +a side), in
+  // one look-up.
+  double column(int iu, int iv, bool& up) const {
+    bool flip = false;
+    const double h = columns_.column(iu, iv, flips_ > 0, flip);
+    up = (dir_.sign > 0) != flip;
+    return h;
+  }
   bool columnUp(int iu, int iv) const { return (dir_.sign > 0) != flipped(iu, iv); }
   // The column's solid vertex count, solidity at a level and solid length, whatever
   // its side (the h-only forms below hold for unflipped columns).
   int columnCount(int iu, int iv) const {
-    return columnSolidCount(height(iu, iv), box_.lo[dir_.axis], box_.hi[dir_.axis],
-                            columnUp(iu, iv));
+    bool up = false;
+    const double h = column(iu, iv, up);
+    return columnSolidCount(h, box_.lo[dir_.axis], box_.hi[dir_.axis], up);
   }
   bool columnSolidAt(int iu, int iv, int level) const {
-    const double h = height(iu, iv);
-    return columnUp(iu, iv) ? level <= h : level >= h;
+    bool up = false;
+    const double h = column(iu, iv, up);
+    return up ? level <= h : level >= h;
   }
-  double columnLengthAt(int iu, int iv) const { return lengthOf(height(iu, iv), columnUp(iu, iv)); }
+  double columnLengthAt(int iu, int iv) const {
+    bool up = false;
+    const double h = column(iu, iv, up);
+    return lengthOf(h, up);
+  }
   // The levels where two neighbouring columns differ (their edges' crossings).
   ColumnStraddle straddleColumns(int iu0, int iv0, int iu1, int iv1) const {
-    return columnsStraddle(columnCount(iu0, iv0), columnUp(iu0, iv0), columnCount(iu1, iv1),
-                           columnUp(iu1, iv1), box_.lo[dir_.axis], box_.hi[dir_.axis]);
+    const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+    bool up0 = false, up1 = false;
+    const double h0 = column(iu0, iv0, up0), h1 = column(iu1, iv1, up1);
+    return columnsStraddle(columnSolidCount(h0, lo, hi, up0), up0,
+                           columnSolidCount(h1, lo, hi, up1), up1, lo, hi);
   }
   // The same for edge `edge` of a row (rowHeight's columns).
   ColumnStraddle straddleEdge(int family, int index, int edge) const {
@@ -150,7 +172,7 @@ class ThreeMap {
     const int n = levels();
     fullColumns_ += (countAfter == n) - (countBefore == n);
     emptyColumns_ += (countAfter == 0) - (countBefore == 0);
-    heights_[iv * nu_ + iu] = h;
+    columns_.set(iu, iv, h, false);
   }
   double emptyHeight() const { return dir_.sign > 0 ? -kInf : kInf; }
   double fullHeight() const { return dir_.sign > 0 ? box_.hi[dir_.axis] : box_.lo[dir_.axis]; }
@@ -236,9 +258,8 @@ class ThreeMap {
   int nv_;
   int fullColumns_;
   int emptyColumns_ = 0;
-  std::vector<double> heights_;
+  ColumnTiles columns_;  // parent heights and sides
   std::vector<std::vector<double>> rows_[2];
-  std::vector<std::uint8_t> flip_;  // per column, allocated at the first flip
   int flips_ = 0;
 };
 
