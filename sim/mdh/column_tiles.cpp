@@ -78,6 +78,38 @@ void ColumnTiles::setSlow(int tile, int iu, int iv, double h, bool flip) {
   }
 }
 
+void ColumnTiles::copyRow(int iv, int iu0, int iu1, double* out) const {
+  const TileReader r = reader();
+  const int tu = 1 << shiftU_;
+  for (int iu = iu0; iu < iu1;) {
+    const int end = std::min(iu1, ((iu >> shiftU_) + 1) * tu);  // this tile's part
+    const std::int32_t s = slot_[r.tileOf(iu, iv)];
+    if (s < 0)
+      std::fill(out, out + (end - iu), uniform_[s == TileReader::kFullTile]);
+    else
+      std::copy_n(r.pool + r.offsetIn(s, iu, iv), end - iu, out);
+    out += end - iu;
+    iu = end;
+  }
+}
+
+void ColumnTiles::copyColumn(int iu, int iv0, int iv1, double* out) const {
+  const TileReader r = reader();
+  const int tv = 1 << shiftV_, width = r.widthOf(iu);
+  for (int iv = iv0; iv < iv1;) {
+    const int end = std::min(iv1, ((iv >> shiftV_) + 1) * tv);
+    const std::int32_t s = slot_[r.tileOf(iu, iv)];
+    if (s < 0) {
+      std::fill(out, out + (end - iv), uniform_[s == TileReader::kFullTile]);
+    } else {
+      const double* p = r.pool + r.offsetIn(s, iu, iv);
+      for (int k = 0; k < end - iv; ++k) out[k] = p[static_cast<std::ptrdiff_t>(k) * width];
+    }
+    out += end - iv;
+    iv = end;
+  }
+}
+
 std::size_t ColumnTiles::memoryBytes() const {
   std::size_t bytes = slot_.capacity() * sizeof(std::int32_t) + pool_.capacity() * sizeof(double) +
                       flipPool_.capacity() + canonical_[0].capacity() + canonical_[1].capacity();

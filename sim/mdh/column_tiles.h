@@ -85,6 +85,9 @@ class ColumnTiles {
             lastWidth_,
             {uniform_[0], uniform_[1]}};
   }
+  // Heights of columns [iu0, iu1) of row iv, or of rows [iv0, iv1) of column iu, into out.
+  void copyRow(int iv, int iu0, int iu1, double* out) const;
+  void copyColumn(int iu, int iv0, int iv1, double* out) const;
   // f(h) for every column, row-major into out (nu * nv entries): per uniform tile, once.
   template <class F>
   void forEachRowMajor(int* out, F f) const;

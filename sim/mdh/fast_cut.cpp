@@ -22,12 +22,13 @@ struct Scratch {
   std::vector<int> rowStart;  // rowCount + 1 offsets into byRow
   std::vector<int> next;
   std::vector<Span> before, after, pieces;
-  std::vector<double> heights, row, oldCrossings;
+  std::vector<double> heights, oldHeights, row, oldCrossings;  // a row's, after and before
   std::vector<std::uint8_t> changed;
-  std::vector<int> counts;     // solid vertex count of every column before the cut
-  std::vector<int> newCounts;  // of the row being rebuilt, after it
-  std::vector<int> rowLines;   // the z lines a row of columns asks for
-  std::vector<Span> rowSpans;  // their intervals, when the cell computes them itself
+  std::vector<int> counts;            // solid vertex count of every column before the cut
+  std::vector<int> newCounts;         // of the row being rebuilt, after it
+  std::vector<double> regionHeights;  // cutColumns: a row's heights in the region
+  std::vector<int> rowLines;          // the z lines a row of columns asks for
+  std::vector<Span> rowSpans;         // their intervals, when the cell computes them itself
   std::vector<std::size_t> rowEnds;
   std::vector<int> newCountsMap;          // solid vertex counts after the cut, every column
   std::vector<std::uint8_t> changedMap;   // the columns that moved, every column
@@ -278,7 +279,7 @@ void rebuildRow(ThreeMap& m, int family, int r, int e0, int e1, const IntervalCa
   const double weight = 0.5 * m.squaresAtEdge(family, r);
   std::size_t pos = 0;
   for (int e = 0; e < edges; ++e) {
-    const double oh0 = cols.rowHeight(family, r, e), oh1 = cols.rowHeight(family, r, e + 1);
+    const double oh0 = s.oldHeights[e], oh1 = s.oldHeights[e + 1];
     const double nh0 = s.heights[e], nh1 = s.heights[e + 1];
     int ofirst = 0, ocount = 0, nfirst = 0, ncount = 0;
     cols.straddleCounts(countAt(cols, s, family, r, e), countAt(cols, s, family, r, e + 1), ofirst,
@@ -459,7 +460,7 @@ bool cutColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& 
   s.changes.clear();
   const bool up = map.direction().sign > 0;
   const double bottom = box.lo[a], top = box.hi[a];
-  const Columns cols(map);
+  s.regionHeights.resize(static_cast<std::size_t>(region.points(u)));
   // A z column whose top lies below the tool's lowest point (above its highest in
   // a -z map) keeps its height: no need to ask for its line. The margin covers
   // the intervals' snapping (1e-9) and rounding against the solid's bounds.
@@ -474,14 +475,15 @@ bool cutColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& 
   std::optional<SideVertexRule> rule;
   if (a != 2) rule.emplace(cache, region);
   for (int cv = region.lo[v]; cv <= region.hi[v]; ++cv) {
+    // The row's heights in the region, read once.
+    map.rowHeights(0, cv - box.lo[v], region.lo[u] - box.lo[u], region.hi[u] - box.lo[u] + 1,
+                   s.regionHeights.data());
     if (rowFill) {
       // The row's lines that the loop below will ask for, filled body by body in one
       // go (IntervalCache::fillRow): the same answers, for less per line.
       s.rowLines.clear();
-      for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
-        const double h = cols.at(cu - box.lo[u], cv - box.lo[v]);
-        if (!underTool(h)) s.rowLines.push_back(cu);
-      }
+      for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu)
+        if (!underTool(s.regionHeights[cu - region.lo[u]])) s.rowLines.push_back(cu);
       if (ownLines)
         cache.rowSpans(a, cv, s.rowLines, s.rowSpans, s.rowEnds);
       else if (s.rowLines.size() > 1)
@@ -490,7 +492,7 @@ bool cutColumns(const ThreeMap& map, const IntervalCache& cache, const GridBox& 
     std::size_t line = 0;  // ownLines: the next of the row's lines
     for (int cu = region.lo[u]; cu <= region.hi[u]; ++cu) {
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
-      const double h = cols.at(iu, iv);
+      const double h = s.regionHeights[cu - region.lo[u]];
       // An empty column of a z map has nothing to lose: no need to ask for its line.
       if (a == 2 && underTool(h)) continue;
       std::span<const Span> tool;
@@ -573,13 +575,12 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
           continue;
         }
         const int n = map.edgesInRow(family) + 1;
-        s.heights.resize(n);
+        s.oldHeights.resize(n);
+        map.rowHeights(family, r, 0, n, s.oldHeights.data());
+        s.heights.assign(s.oldHeights.begin(), s.oldHeights.end());
         s.newCounts.resize(n);
         s.changed.assign(n, 0);
-        for (int e = 0; e < n; ++e) {
-          s.heights[e] = cols.rowHeight(family, r, e);
-          s.newCounts[e] = countAt(cols, s, family, r, e);
-        }
+        for (int e = 0; e < n; ++e) s.newCounts[e] = countAt(cols, s, family, r, e);
         for (int i = begin; i < end; ++i) {
           const ColumnChange& c = s.changes[s.byRow[i]];
           const int e = family == 0 ? c.iu : c.iv;

@@ -109,10 +109,21 @@ class ThreeMap {
   double height(int iu, int iv) const { return columns_.get(iu, iv); }
   // The parent heights for hot loops: valid until the next setHeight / setColumn.
   TileReader heights() const { return columns_.reader(); }
+  // The parent heights of columns [e0, e1) of a row (rowHeight's order) into out.
+  void rowHeights(int family, int index, int e0, int e1, double* out) const {
+    if (family == 0)
+      columns_.copyRow(index, e0, e1, out);
+    else
+      columns_.copyColumn(index, e0, e1, out);
+  }
   // solidCount(height) of every column, row-major (iv * columnsU() + iu): a map
   // without flips, its columns' solid counts.
   void solidCounts(int* out) const {
-    columns_.forEachRowMajor(out, [this](double h) { return solidCount(h); });
+    // Locals: through `this` each store into out would reload the box.
+    const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+    const bool up = dir_.sign > 0;
+    columns_.forEachRowMajor(out,
+                             [lo, hi, up](double h) { return columnSolidCount(h, lo, hi, up); });
   }
   // An unflipped column (a flipped one loses its flip).
   void setHeight(int iu, int iv, double h) {
