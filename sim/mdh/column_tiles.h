@@ -121,24 +121,25 @@ class ColumnTiles {
 
 template <class F>
 void ColumnTiles::forEachRowMajor(int* out, F f) const {
-  const TileReader r = reader();
   const int tu = 1 << shiftU_, tv = 1 << shiftV_;
   const int uniformValue[2] = {f(uniform_[0]), f(uniform_[1])};
-  for (int t = 0; t < tilesV_; ++t)
-    for (int s = 0; s < tilesU_; ++s) {
-      const std::int32_t k = slot_[t * tilesU_ + s];
-      const int iu0 = s * tu, iu1 = std::min(nu_, iu0 + tu);
-      const int iv0 = t * tv, iv1 = std::min(nv_, iv0 + tv);
-      for (int iv = iv0; iv < iv1; ++iv) {
-        int* row = out + static_cast<std::size_t>(iv) * nu_;
+  for (int t = 0; t < tilesV_; ++t) {
+    const std::int32_t* slots = slot_.data() + static_cast<std::size_t>(t) * tilesU_;
+    const int iv0 = t * tv, iv1 = std::min(nv_, iv0 + tv);
+    for (int iv = iv0; iv < iv1; ++iv) {
+      int* row = out + static_cast<std::size_t>(iv) * nu_;
+      for (int s = 0; s < tilesU_; ++s, row += tu) {
+        const std::int32_t k = slots[s];
+        const int width = s == tilesU_ - 1 ? lastWidth_ : tu;
         if (k < 0) {
-          std::fill(row + iu0, row + iu1, uniformValue[k == TileReader::kFullTile]);
+          std::fill_n(row, width, uniformValue[k == TileReader::kFullTile]);
           continue;
         }
-        const double* p = r.pool + r.offsetIn(k, iu0, iv);  // the tile's row: contiguous
-        for (int iu = iu0; iu < iu1; ++iu) row[iu] = f(p[iu - iu0]);
+        const double* p = pool_.data() + k + static_cast<std::size_t>(iv - iv0) * width;
+        for (int i = 0; i < width; ++i) row[i] = f(p[i]);
       }
     }
+  }
 }
 
 }  // namespace mdhd::mdh

@@ -75,24 +75,21 @@ class SideVertexRule {
 
 thread_local std::vector<std::uint8_t> SideVertexRule::done_, SideVertexRule::gone_;
 
-// The parent heights and what solid counts need, held in locals: the loops
-// below store into rows and scratch vectors, after which anything read through
-// the map (its vector, sizes, box, direction) would be loaded again.
+// What solid counts need, held in locals: the loops below store into rows and
+// scratch vectors, after which anything read through the map (its sizes, box,
+// direction) would be loaded again. Heights are read a row at a time
+// (ThreeMap::rowHeights) into scratch vectors.
 struct Columns {
   explicit Columns(const ThreeMap& m)
-      : h(m.heights()),
-        nu(m.columnsU()),
+      : nu(m.columnsU()),
         lo(m.box().lo[m.axis()]),
         hi(m.box().hi[m.axis()]),
         up(m.direction().sign > 0) {}
-  double at(int iu, int iv) const { return h.get(iu, iv); }
-  double rowHeight(int family, int r, int e) const { return family == 0 ? at(e, r) : at(r, e); }
   int solidCount(double x) const { return columnSolidCount(x, lo, hi, up); }
   void straddleCounts(int f1, int f2, int& first, int& count) const {
     columnStraddle(f1, f2, lo, hi, up, first, count);
   }
 
-  TileReader h;
   int nu, lo, hi;
   bool up;
 };
@@ -328,6 +325,7 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, int k0, in
   const bool up = m.direction().sign > 0, levelIsU = axisU(x) == a;
   const int fixed = box.lo[y] + r;
   const Columns cols(m);
+  const TileReader heights = m.heights();  // no height is stored while it lives
   std::vector<double>& row = m.row(family, r);
   const double weight = 0.5 * m.squaresAtEdge(family, r);
   bool moved = false;
@@ -341,7 +339,8 @@ bool moveRowCrossings(ThreeMap& m, int family, int r, int e0, int e1, int k0, in
       pos += count;
       continue;
     }
-    const double h0 = cols.rowHeight(family, r, e), h1 = cols.rowHeight(family, r, e + 1);
+    const double h0 = heights.get(family == 0 ? e : r, family == 0 ? r : e);
+    const double h1 = heights.get(family == 0 ? e + 1 : r, family == 0 ? r : e + 1);
     double* c = row.data() + pos;
     const bool integrate = weight > 0.0 && delta != nullptr;
     if (integrate) s.oldCrossings.assign(c, c + count);
