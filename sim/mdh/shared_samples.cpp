@@ -16,11 +16,25 @@ bool leafSolidAt(const LeafView& leaf, const GridPoint& p) {
                          p[m.axis()]);
 }
 
-double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* sampled) {
+namespace {
+
+// A leaf's crossings with each row's packed offsets computed once: a walk from the
+// row's start for every lookup made checking a large cell's faces quadratic.
+class LeafCrossings {
+ public:
+  explicit LeafCrossings(const LeafView& leaf) : leaf_(leaf) {}
+  double at(const GridPoint& p, int axis, bool* sampled);
+
+ private:
+  const LeafView& leaf_;
+  std::vector<std::vector<std::size_t>> offsets_[2];  // per family and row, per edge
+};
+
+double LeafCrossings::at(const GridPoint& p, int axis, bool* sampled) {
   const double none = std::nan("");
   if (sampled) *sampled = true;
-  if (leaf.state != CellState::kPartial || leaf.map == nullptr) return none;
-  const ThreeMap& m = *leaf.map;
+  if (leaf_.state != CellState::kPartial || leaf_.map == nullptr) return none;
+  const ThreeMap& m = *leaf_.map;
   // A plain heightmap's parent heights may come from interpolated crossings
   // (a resample), so none of its crossings is a sample another cell shares.
   if (sampled) *sampled = m.threeWay();
@@ -34,20 +48,27 @@ double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* 
   const int family = axis == u ? 0 : 1;
   const int r = family == 0 ? p[v] - b.lo[v] : p[u] - b.lo[u];
   const int edge = p[axis] - b.lo[axis];
-  std::size_t pos = 0;
-  for (int e = 0;; ++e) {
-    const ColumnStraddle st = m.straddleEdge(family, r, e);
-    if (e < edge) {
-      pos += st.total();
-      continue;
-    }
-    const int at = st.indexOf(p[a]);
-    if (at < 0) return none;
-    if (!m.threeWay())
-      return m.interpolatedCrossing(m.rowHeight(family, r, e), m.rowHeight(family, r, e + 1),
-                                    p[axis], p[a]);
-    return m.row(family, r)[pos + static_cast<std::size_t>(at)];
+  const ColumnStraddle st = m.straddleEdge(family, r, edge);
+  const int at = st.indexOf(p[a]);
+  if (at < 0) return none;
+  if (!m.threeWay())
+    return m.interpolatedCrossing(m.rowHeight(family, r, edge), m.rowHeight(family, r, edge + 1),
+                                  p[axis], p[a]);
+  auto& rows = offsets_[family];
+  if (rows.empty()) rows.resize(static_cast<std::size_t>(m.rowCount(family)));
+  std::vector<std::size_t>& offsets = rows[static_cast<std::size_t>(r)];
+  if (offsets.empty()) {
+    offsets.resize(static_cast<std::size_t>(m.edgesInRow(family)) + 1, 0);
+    for (int e = 0; e < m.edgesInRow(family); ++e)
+      offsets[e + 1] = offsets[e] + static_cast<std::size_t>(m.straddleEdge(family, r, e).total());
   }
+  return m.row(family, r)[offsets[edge] + static_cast<std::size_t>(at)];
+}
+
+}  // namespace
+
+double leafCrossingAt(const LeafView& leaf, const GridPoint& p, int axis, bool* sampled) {
+  return LeafCrossings(leaf).at(p, axis, sampled);
 }
 
 std::string SampleDisagreement::describe() const {
@@ -104,6 +125,7 @@ std::vector<SampleDisagreement> sharedSampleDisagreements(const Stock& stock, st
   };
   stock.forEachLeaf([&](const LeafView& leaf) {
     const GridBox& b = leaf.box;
+    LeafCrossings crossings(leaf);
     for (int f = 0; f < 3; ++f) {
       const int u = axisU(f), v = axisV(f);
       for (int side : {b.lo[f], b.hi[f]}) {
@@ -115,7 +137,7 @@ std::vector<SampleDisagreement> sharedSampleDisagreements(const Stock& stock, st
             for (int e : {u, v}) {
               if (p[e] == b.hi[e]) continue;
               bool sampled = true;
-              const double c = leafCrossingAt(leaf, p, e, &sampled);
+              const double c = crossings.at(p, e, &sampled);
               record(leaf, p, e, c, sampled);
             }
           }

@@ -2,6 +2,7 @@
 // boundary has one state and every grid edge there one crossing, whatever
 // the tools, directions, splits, bricks and forced cells (engine guarantee
 // the mesher relies on).
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -10,6 +11,8 @@
 #include "bench/mesh/donut_surface.h"
 #include "sim/mdh/shared_samples.h"
 #include "sim/mdh/stock.h"
+#include "sim/mdh/three_map.h"
+#include "tests/mdh/analytic_solids.h"
 #include "tests/mdh/random_tool_moves.h"
 
 namespace mdhd::mdh {
@@ -100,6 +103,60 @@ TEST(SharedSamples, DonutAtDensityFour) {
     else
       EXPECT_EQ(stock.stats().forcedVertices, 0);
     for (const auto& d : sharedSampleDisagreements(stock, 4)) ADD_FAILURE() << d.describe();
+  }
+}
+
+// A pocket whose walls lie half-way between grid points: every crossing the one
+// leaf stores is where the walls are, row after row (the rows' packed offsets).
+TEST(SharedSamples, LeafCrossingsAreTheWalls) {
+  StockOptions o;
+  o.density = 10;
+  o.brick = 0;
+  Stock stock({{0, 0, 0}, {10, 8, 6}}, o);
+  stock.cut(testing::BoxSolid({2.05, 2.05, 4.05}, {5.05, 6.05, 7}), {0, 0, 1});
+  int leaves = 0;
+  stock.forEachLeaf([&](const LeafView& leaf) {
+    ++leaves;
+    for (int z = 41; z <= 60; ++z)
+      for (int y = 21; y <= 60; y += 3) {
+        EXPECT_NEAR(leafCrossingAt(leaf, {20, y, z}, 0), 20.5, 1e-9) << y << " " << z;
+        EXPECT_NEAR(leafCrossingAt(leaf, {50, y, z}, 0), 50.5, 1e-9) << y << " " << z;
+        EXPECT_TRUE(std::isnan(leafCrossingAt(leaf, {30, y, z}, 0)));
+      }
+    for (int x = 21; x <= 50; x += 7) {
+      EXPECT_NEAR(leafCrossingAt(leaf, {x, 20, 45}, 1), 20.5, 1e-9);
+      EXPECT_NEAR(leafCrossingAt(leaf, {x, 60, 45}, 1), 60.5, 1e-9);
+      EXPECT_NEAR(leafCrossingAt(leaf, {x, 30, 40}, 2), 40.5, 1e-9);
+    }
+  });
+  EXPECT_EQ(leaves, 1);
+}
+
+// The check finds a disagreement planted on a brick boundary (it can fail).
+TEST(SharedSamples, APlantedDisagreementIsFound) {
+  StockOptions o;
+  o.density = 10;
+  o.brick = 8;
+  Stock stock({{0, 0, 0}, {4, 4, 2}}, o);
+  stock.cut(testing::BoxSolid({-1, -1, 1.05}, {5, 5, 3}), {0, 0, 1});
+  ASSERT_TRUE(sharedSampleDisagreements(stock, 4).empty());
+  bool planted = false;
+  stock.forEachLeaf([&](const LeafView& leaf) {
+    if (planted || leaf.map == nullptr || leaf.box.lo[0] == 0) return;
+    // The floor's height on the leaf's -x face, a column its -x neighbour shares.
+    auto& map = const_cast<ThreeMap&>(*leaf.map);
+    ASSERT_NEAR(map.height(0, 0), 10.5, 1e-9);
+    map.setHeight(0, 0, 10.75);  // the same vertices solid, another crossing
+    planted = true;
+  });
+  ASSERT_TRUE(planted);
+  // Reported from each face of the leaf that holds the column (its -x and -y faces).
+  const auto bad = sharedSampleDisagreements(stock, 4);
+  ASSERT_FALSE(bad.empty());
+  for (const auto& d : bad) {
+    EXPECT_EQ(d.axis, 2) << d.describe();
+    EXPECT_EQ(d.vertex, (GridPoint{8, 0, 10})) << d.describe();
+    EXPECT_NEAR(d.secondValue, 10.75, 1e-9) << d.describe();
   }
 }
 
