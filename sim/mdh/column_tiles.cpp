@@ -51,7 +51,10 @@ void ColumnTiles::setSlow(int tile, int iu, int iv, double h, bool flip) {
         pool_.reserve(std::max(pool_.size() + size, std::min(all, pool_.size() + grow)));
       }
       pool_.resize(pool_.size() + size);
-      if (!flipPool_.empty()) flipPool_.resize(pool_.size(), 0);
+      if (!flipPool_.empty()) {
+        if (flipPool_.capacity() < pool_.capacity()) flipPool_.reserve(pool_.capacity());
+        flipPool_.resize(pool_.size(), 0);
+      }
     }
     std::fill_n(pool_.begin() + s, size, uniform_[kind]);
     canonical_[kind][tile] = static_cast<std::uint8_t>(size);
@@ -65,7 +68,10 @@ void ColumnTiles::setSlow(int tile, int iu, int iv, double h, bool flip) {
   const int before = kindOf(pool_[i], wasFlipped), after = kindOf(h, flip);
   pool_[i] = h;
   if (flip != wasFlipped) {
-    if (flipPool_.empty()) flipPool_.assign(pool_.size(), 0);
+    if (flipPool_.empty()) {
+      flipPool_.reserve(pool_.capacity());
+      flipPool_.assign(pool_.size(), 0);
+    }
     flipPool_[i] = flip ? 1 : 0;
   }
   if (before == after) return;

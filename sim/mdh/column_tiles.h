@@ -92,6 +92,15 @@ class ColumnTiles {
   template <class F>
   void forEachRowMajor(int* out, F f) const;
 
+  // Building a whole map column by column: room for every column at once, then only
+  // what the stored tiles use (a pool grown a quarter at a time would be copied
+  // some 20 times on the way to a large cell's size).
+  void reserveAll() { pool_.reserve(static_cast<std::size_t>(nu_) * nv_); }
+  void releaseSlack() {
+    pool_.shrink_to_fit();
+    flipPool_.shrink_to_fit();
+  }
+
   int materializedTiles() const { return static_cast<int>(slot_.size()) - uniformTiles_; }
   std::size_t memoryBytes() const;
 

@@ -208,6 +208,7 @@ ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay, bool twoSide
   ThreeMap map(g.box(), d, threeWay);
   const int u = map.uAxis(), v = map.vAxis();
   const GridBox& box = g.box();
+  map.reserveAllColumns();
   for (int cv = box.lo[v]; cv <= box.hi[v]; ++cv)
     for (int cu = box.lo[u]; cu <= box.hi[u]; ++cu) {
       double h = 0.0;
@@ -217,6 +218,7 @@ ThreeMap encodeMap(const SampleGrid& g, Direction d, bool threeWay, bool twoSide
       else
         map.setHeight(cu - box.lo[u], cv - box.lo[v], g.columnHeight(d, cu, cv));
     }
+  map.releaseSlack();
   if (!threeWay) return map;
   for (int family = 0; family < 2; ++family) {
     const int x = family == 0 ? u : v, y = family == 0 ? v : u;

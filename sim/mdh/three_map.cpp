@@ -210,9 +210,11 @@ ThreeMap ThreeMap::restrictedTo(const GridBox& sub) const {
   const int du = sub.lo[u] - box_.lo[u];
   const int dv = sub.lo[v] - box_.lo[v];
   // setColumn clamps into the child's extent along the direction axis.
+  out.reserveAllColumns();
   for (int iv = 0; iv < out.nv_; ++iv)
     for (int iu = 0; iu < out.nu_; ++iu)
       out.setColumn(iu, iv, height(iu + du, iv + dv), flipped(iu + du, iv + dv));
+  out.releaseSlack();
   if (!threeWay_) return out;
   for (int family = 0; family < 2; ++family) {
     const int rowOffset = family == 0 ? dv : du;

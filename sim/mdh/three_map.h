@@ -248,6 +248,10 @@ class ThreeMap {
     return ((iu == 0 || iu == nu_ - 1) && nu_ > 1 ? 0.5 : 1.0) *
            ((iv == 0 || iv == nv_ - 1) && nv_ > 1 ? 0.5 : 1.0);
   }
+  // Around filling every column of a new map (a split's child, an encode): one
+  // allocation for the heights, trimmed to the tiles stored afterwards.
+  void reserveAllColumns() { columns_.reserveAll(); }
+  void releaseSlack() { columns_.releaseSlack(); }
   bool allFull() const { return fullColumns_ == nu_ * nv_; }
   bool allEmpty() const { return emptyColumns_ == nu_ * nv_; }
   std::size_t memoryBytes() const;
