@@ -45,8 +45,8 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
   for (int cv = sub.lo[v]; cv <= sub.hi[v]; ++cv) {
     for (int cu = sub.lo[u]; cu <= sub.hi[u]; ++cu) {
       const int iu = cu - box.lo[u], iv = cv - box.lo[v];
-      const double h = map.height(iu, iv);
-      const bool up = map.columnUp(iu, iv);
+      bool up = false;
+      const double h = map.column(iu, iv, up);
       const auto solidAt = [&](int k) { return up ? k <= h : k >= h; };
       std::size_t i = g.index(vertex(a, sub.lo[a], cu, cv));
       bool before = solidAt(sub.lo[a]);
@@ -59,16 +59,31 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
       }
     }
   }
+  // A row's heights, sides and solid counts read once (the heights are in tiles).
+  thread_local std::vector<double> heights;
+  thread_local std::vector<int> counts;
+  thread_local std::vector<std::uint8_t> ups;
+  const int lo = box.lo[a], hi = box.hi[a];
   for (int family = 0; family < 2; ++family) {
     const int x = family == 0 ? u : v;  // the edges' axis
     const int y = family == 0 ? v : u;  // the rows' axis
+    const int n = map.edgesInRow(family) + 1;
+    heights.resize(n);
+    counts.resize(n);
+    ups.resize(n);
     for (int r = sub.lo[y]; r <= sub.hi[y]; ++r) {
       const int ri = r - box.lo[y];
       const std::vector<double>* row = map.threeWay() ? &map.row(family, ri) : nullptr;
+      map.rowHeights(family, ri, 0, n, heights.data());
+      for (int e = 0; e < n; ++e) {
+        ups[e] = family == 0 ? map.columnUp(e, ri) : map.columnUp(ri, e);
+        counts[e] = columnSolidCount(heights[e], lo, hi, ups[e] != 0);
+      }
       std::size_t pos = 0;
-      for (int e = 0; e < map.edgesInRow(family); ++e) {
-        const double h0 = map.rowHeight(family, ri, e), h1 = map.rowHeight(family, ri, e + 1);
-        const ColumnStraddle st = map.straddleEdge(family, ri, e);
+      for (int e = 0; e + 1 < n; ++e) {
+        const double h0 = heights[e], h1 = heights[e + 1];
+        const ColumnStraddle st =
+            columnsStraddle(counts[e], ups[e] != 0, counts[e + 1], ups[e + 1] != 0, lo, hi);
         const int count = st.total();
         const int c = box.lo[x] + e;
         if (c >= sub.lo[x] && c + 1 <= sub.hi[x]) {
