@@ -142,14 +142,15 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
   thread_local std::vector<std::uint8_t> ups;
   thread_local std::vector<double> lengths;
   const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+  const bool mapUp = dir_.sign > 0;
   auto rowSum = [&](int family, int r, int e0, int e1) {
     counts.resize(e1 + 1);
     ups.resize(e1 + 1);
     lengths.resize(e1 + 1);
+    rowHeights(family, r, 0, e1 + 1, lengths.data());  // the heights, then the lengths
     for (int e = 0; e <= e1; ++e) {
-      const int iu = family == 0 ? e : r, iv = family == 0 ? r : e;
-      bool up = false;
-      const double h = column(iu, iv, up);
+      const bool up = flips_ == 0 ? mapUp : (family == 0 ? columnUp(e, r) : columnUp(r, e));
+      const double h = lengths[e];
       counts[e] = columnSolidCount(h, lo, hi, up);
       ups[e] = up;
       lengths[e] = lengthOf(h, up);
