@@ -84,37 +84,29 @@ void ColumnTiles::setSlow(int tile, int iu, int iv, double h, bool flip) {
   }
 }
 
-void ColumnTiles::copyRow(int iv, int iu0, int iu1, double* out) const {
+template <bool alongU>
+void ColumnTiles::copyLine(int fixed, int from, int to, double* out) const {
   const TileReader r = reader();
-  const int tu = 1 << shiftU_;
-  for (int iu = iu0; iu < iu1;) {
-    const int end = std::min(iu1, ((iu >> shiftU_) + 1) * tu);  // this tile's part
+  const int shift = alongU ? shiftU_ : shiftV_;
+  // Within a tile a row is contiguous; a column steps by the tile's width.
+  const std::ptrdiff_t step = alongU ? 1 : r.widthOf(fixed);  // 1: a copy the compiler sees
+  for (int k = from; k < to;) {
+    const int end = std::min(to, ((k >> shift) + 1) << shift);  // this tile's part
+    const int iu = alongU ? k : fixed, iv = alongU ? fixed : k;
     const std::int32_t s = slot_[r.tileOf(iu, iv)];
-    if (s < 0)
-      std::fill(out, out + (end - iu), uniform_[s == TileReader::kFullTile]);
-    else
-      std::copy_n(r.pool + r.offsetIn(s, iu, iv), end - iu, out);
-    out += end - iu;
-    iu = end;
+    if (s < 0) {
+      std::fill(out, out + (end - k), uniform_[s == TileReader::kFullTile]);
+    } else {
+      const double* p = r.pool + r.offsetIn(s, iu, iv);
+      for (int i = 0; i < end - k; ++i) out[i] = p[i * step];
+    }
+    out += end - k;
+    k = end;
   }
 }
 
-void ColumnTiles::copyColumn(int iu, int iv0, int iv1, double* out) const {
-  const TileReader r = reader();
-  const int tv = 1 << shiftV_, width = r.widthOf(iu);
-  for (int iv = iv0; iv < iv1;) {
-    const int end = std::min(iv1, ((iv >> shiftV_) + 1) * tv);
-    const std::int32_t s = slot_[r.tileOf(iu, iv)];
-    if (s < 0) {
-      std::fill(out, out + (end - iv), uniform_[s == TileReader::kFullTile]);
-    } else {
-      const double* p = r.pool + r.offsetIn(s, iu, iv);
-      for (int k = 0; k < end - iv; ++k) out[k] = p[static_cast<std::ptrdiff_t>(k) * width];
-    }
-    out += end - iv;
-    iv = end;
-  }
-}
+template void ColumnTiles::copyLine<true>(int, int, int, double*) const;
+template void ColumnTiles::copyLine<false>(int, int, int, double*) const;
 
 std::size_t ColumnTiles::memoryBytes() const {
   std::size_t bytes = slot_.capacity() * sizeof(std::int32_t) + pool_.capacity() * sizeof(double) +

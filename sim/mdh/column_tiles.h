@@ -51,10 +51,9 @@ class ColumnTiles {
 
   double get(int iu, int iv) const { return reader().get(iu, iv); }
   bool flipped(int iu, int iv) const {
-    if (flipPool_.empty()) return false;
-    const TileReader r = reader();
-    const std::int32_t s = slot_[r.tileOf(iu, iv)];
-    return s >= 0 && flipPool_[r.offsetIn(s, iu, iv)] != 0;
+    bool flip = false;
+    column(iu, iv, !flipPool_.empty(), flip);
+    return flip;
   }
   // A column's height and, when the tiles may hold flips (`anyFlips`), its side.
   double column(int iu, int iv, bool anyFlips, bool& flip) const {
@@ -86,8 +85,10 @@ class ColumnTiles {
             {uniform_[0], uniform_[1]}};
   }
   // Heights of columns [iu0, iu1) of row iv, or of rows [iv0, iv1) of column iu, into out.
-  void copyRow(int iv, int iu0, int iu1, double* out) const;
-  void copyColumn(int iu, int iv0, int iv1, double* out) const;
+  void copyRow(int iv, int iu0, int iu1, double* out) const { copyLine<true>(iv, iu0, iu1, out); }
+  void copyColumn(int iu, int iv0, int iv1, double* out) const {
+    copyLine<false>(iu, iv0, iv1, out);
+  }
   // f(h) for every column, row-major into out (nu * nv entries): per uniform tile, once.
   template <class F>
   void forEachRowMajor(int* out, F f) const;
@@ -106,6 +107,8 @@ class ColumnTiles {
 
  private:
   void setSlow(int tile, int iu, int iv, double h, bool flip);
+  template <bool alongU>
+  void copyLine(int fixed, int from, int to, double* out) const;
   // A tile's size class (last of its row of tiles, in the last row: 0..3) and columns.
   int tileClass(int tile) const {
     return (tile % tilesU_ == tilesU_ - 1) + 2 * (tile / tilesU_ == tilesV_ - 1);

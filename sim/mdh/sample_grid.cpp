@@ -74,11 +74,7 @@ SampleGrid SampleGrid::decode(const ThreeMap& map, const GridBox& sub) {
     for (int r = sub.lo[y]; r <= sub.hi[y]; ++r) {
       const int ri = r - box.lo[y];
       const std::vector<double>* row = map.threeWay() ? &map.row(family, ri) : nullptr;
-      map.rowHeights(family, ri, 0, n, heights.data());
-      for (int e = 0; e < n; ++e) {
-        ups[e] = family == 0 ? map.columnUp(e, ri) : map.columnUp(ri, e);
-        counts[e] = columnSolidCount(heights[e], lo, hi, ups[e] != 0);
-      }
+      map.rowColumns(family, ri, n, heights.data(), ups.data(), counts.data());
       std::size_t pos = 0;
       for (int e = 0; e + 1 < n; ++e) {
         const double h0 = heights[e], h1 = heights[e + 1];

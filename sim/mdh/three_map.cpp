@@ -31,10 +31,18 @@ void ThreeMap::setColumn(int iu, int iv, double h, bool flip) {
     flip = false;
   }
   if (flip != was) flips_ += flip ? 1 : -1;
-  const int n = levels();
-  fullColumns_ += (after == n) - (before == n);
-  emptyColumns_ += (after == 0) - (before == 0);
-  columns_.set(iu, iv, h, flip);
+  store(iu, iv, h, flip, before, after);
+}
+
+void ThreeMap::rowColumns(int family, int index, int n, double* heights, std::uint8_t* ups,
+                          int* counts) const {
+  rowHeights(family, index, 0, n, heights);
+  const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+  const bool mapUp = dir_.sign > 0;
+  for (int e = 0; e < n; ++e) {
+    ups[e] = flips_ == 0 ? mapUp : (family == 0 ? columnUp(e, index) : columnUp(index, e));
+    counts[e] = columnSolidCount(heights[e], lo, hi, ups[e] != 0);
+  }
 }
 
 void ThreeMap::straddle(double h1, double h2, int& first, int& count) const {
@@ -142,19 +150,12 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
   thread_local std::vector<std::uint8_t> ups;
   thread_local std::vector<double> lengths;
   const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
-  const bool mapUp = dir_.sign > 0;
   auto rowSum = [&](int family, int r, int e0, int e1) {
     counts.resize(e1 + 1);
     ups.resize(e1 + 1);
     lengths.resize(e1 + 1);
-    rowHeights(family, r, 0, e1 + 1, lengths.data());  // the heights, then the lengths
-    for (int e = 0; e <= e1; ++e) {
-      const bool up = flips_ == 0 ? mapUp : (family == 0 ? columnUp(e, r) : columnUp(r, e));
-      const double h = lengths[e];
-      counts[e] = columnSolidCount(h, lo, hi, up);
-      ups[e] = up;
-      lengths[e] = lengthOf(h, up);
-    }
+    rowColumns(family, r, e1 + 1, lengths.data(), ups.data(), counts.data());
+    for (int e = 0; e <= e1; ++e) lengths[e] = lengthOf(lengths[e], ups[e] != 0);  // heights in
     const auto crossingsAt = [&](int e) {
       return columnsStraddle(counts[e], ups[e], counts[e + 1], ups[e + 1], lo, hi).total();
     };

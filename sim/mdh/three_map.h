@@ -116,6 +116,10 @@ class ThreeMap {
     else
       columns_.copyColumn(index, e0, e1, out);
   }
+  // Columns [0, n) of a row: heights, sides (1: solid from the low face) and solid
+  // counts, read out of the tiles once.
+  void rowColumns(int family, int index, int n, double* heights, std::uint8_t* ups,
+                  int* counts) const;
   // solidCount(height) of every column, row-major (iv * columnsU() + iu): a map
   // without flips, its columns' solid counts.
   void solidCounts(int* out) const {
@@ -180,10 +184,7 @@ class ThreeMap {
   }
   // The same when the caller has the solid counts before and after (a cut does).
   void setHeight(int iu, int iv, double h, int countBefore, int countAfter) {
-    const int n = levels();
-    fullColumns_ += (countAfter == n) - (countBefore == n);
-    emptyColumns_ += (countAfter == 0) - (countBefore == 0);
-    columns_.set(iu, iv, h, false);
+    store(iu, iv, h, false, countBefore, countAfter);
   }
   double emptyHeight() const { return dir_.sign > 0 ? -kInf : kInf; }
   double fullHeight() const { return dir_.sign > 0 ? box_.hi[dir_.axis] : box_.lo[dir_.axis]; }
@@ -261,6 +262,13 @@ class ThreeMap {
   ThreeMap restrictedTo(const GridBox& sub) const;
 
  private:
+  // Stores a column, keeping the full and empty column counts.
+  void store(int iu, int iv, double h, bool flip, int countBefore, int countAfter) {
+    const int n = levels();
+    fullColumns_ += (countAfter == n) - (countBefore == n);
+    emptyColumns_ += (countAfter == 0) - (countBefore == 0);
+    columns_.set(iu, iv, h, flip);
+  }
   double profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
                          const double* crossings, bool up) const;
   double mixedEdgeIntegral(int f0, int f1, double len0, double len1, bool up0, int edgeStart,
