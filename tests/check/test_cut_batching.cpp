@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/check/check_fixture.h"
+#include "tests/soak_seeds.h"
 
 namespace mdhd::check {
 namespace {
@@ -204,7 +205,7 @@ TEST(BrickShape, TallOnlyWhereNoRotaryJointTurnsTheTool) {
   EXPECT_EQ(rig::run(std::move(longFlutes), "M30\n").mdh.leaves, 13 * 13);
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, CutBatching, ::testing::Values(1u, 2u, 3u, 4u, 5u, 6u));
+INSTANTIATE_TEST_SUITE_P(Seeds, CutBatching, ::testing::ValuesIn(soak::seeds(6)));
 
 }  // namespace
 }  // namespace mdhd::check

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/check/check_fixture.h"
+#include "tests/soak_seeds.h"
 
 namespace mdhd::check {
 namespace {
@@ -136,7 +137,7 @@ TEST_P(FreshRegions, RandomFiveAxisProgramsGiveTheReportOfEagerCrossings) {
   expectSameCollisions(lazy, eager);
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, FreshRegions, ::testing::Values(1u, 2u, 3u, 4u));
+INSTANTIATE_TEST_SUITE_P(Seeds, FreshRegions, ::testing::ValuesIn(soak::seeds(4)));
 
 }  // namespace
 }  // namespace mdhd::check
