@@ -3,10 +3,13 @@
 // removed volume and cells. The programs mix short feed rasters over a wavy floor
 // (the batches), arcs, plunges deep enough to bury the shank, rapids
 // into the stock and cuts with the spindle off.
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -87,33 +90,85 @@ void expectSameCollisions(const Report& got, const Report& want, double depth) {
   }
 }
 
+struct Kept {
+  Report report;
+  std::unique_ptr<mdh::Stock> stock;
+  double machinedArea = 0.0;
+};
+
+Kept runKeeping(const std::string& program, int batch, int brickZ) {
+  rig::Rig s;
+  s.options.density = 5;
+  s.options.batch_steps = batch;
+  s.options.brick_z = brickZ;
+  s.options.chain_tolerance = 0.0;
+  Kept k;
+  k.report = rig::run(std::move(s), program, nullptr, [&](const Simulation& sim) {
+    k.stock = sim.stock().clone();
+    k.machinedArea = sim.stock().area().total;
+  });
+  return k;
+}
+
+// Every grid line of the two stocks holds as many solid intervals, their ends within
+// `tolerance` mm. Lines of every third row and column, each axis: a wall or floor
+// that differs spans several.
+void expectSameSamples(const mdh::Stock& got, const mdh::Stock& want, double tolerance) {
+  const mdh::GridSpec& g = want.grid();
+  std::vector<geom::Interval> a, b;
+  int lines = 0, moved = 0;
+  double worst = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (int iu = 0; iu <= g.cubes[u]; iu += 3)
+      for (int iv = 0; iv <= g.cubes[v]; iv += 3) {
+        a.clear();
+        b.clear();
+        got.solidIntervals(axis, iu, iv, a);
+        want.solidIntervals(axis, iu, iv, b);
+        ++lines;
+        ASSERT_EQ(a.size(), b.size()) << "axis " << axis << " line " << iu << " " << iv;
+        double d = 0.0;
+        for (std::size_t k = 0; k < a.size(); ++k)
+          d = std::max({d, std::abs(a[k].lo - b[k].lo), std::abs(a[k].hi - b[k].hi)});
+        moved += d > 0.0;
+        worst = std::max(worst, d);
+      }
+  }
+  EXPECT_LE(worst, tolerance) << moved << " of " << lines << " lines moved";
+}
+
 // A batch is cut as one union when every cell it reaches keeps its direction. One by
 // one, a step may leave a transient overhang that a later step of the same batch
 // removes (a plunge burying the shank, then a cut above it): the slow path then splits
-// or turns cells the batch never touches, and the maps differ by their discretisation.
-// Collisions and volumes agree in every brick shape; with cubic bricks these programs
-// also meet no transient overhang, so the cells agree exactly there.
+// or turns cells the batch never touches. The two stocks hold the same samples: every
+// grid line the same solid intervals, an end moved at most a quarter of a grid
+// spacing (a crossing an edge gets from both ends the union may place elsewhere in
+// the edge; 0.12 h seen over seeds 1-400, on ~1 % of the lines), so the collisions
+// are the same. Volumes integrate each cell's surface between its lines in the
+// cell's own direction: where cells turned differently they differ by the maps'
+// discretisation (up to 1.3e-3 of the removed volume seen, seed 53: a 10 x 6 mm
+// wall between two rows of columns, in a +x map one way and a +y map the other),
+// bounded here by a fiftieth of a grid spacing over the machined surface.
 void expectSameReport(const std::string& program, int brickZ) {
-  const Report one = runWith(program, 1, brickZ), batched = runWith(program, 16, brickZ);
-  EXPECT_GT(one.stats.removed_volume_mm3, 100.0);
-  expectSameCollisions(batched, one, 1e-6);
-  for (std::size_t i = 0; i < one.collisions.size() && i < batched.collisions.size(); ++i)
-    EXPECT_NEAR(batched.collisions[i].path_s, one.collisions[i].path_s, 1e-9) << i;
-  ASSERT_EQ(batched.stats.tools.size(), one.stats.tools.size());
-  for (std::size_t i = 0; i < one.stats.tools.size(); ++i) {
-    EXPECT_NEAR(batched.stats.tools[i].cutting_time_s, one.stats.tools[i].cutting_time_s, 1e-9);
-    EXPECT_NEAR(batched.stats.tools[i].removed_volume_mm3, one.stats.tools[i].removed_volume_mm3,
-                1e-5 * one.stats.removed_volume_mm3);
+  const Kept one = runKeeping(program, 1, brickZ), batched = runKeeping(program, 16, brickZ);
+  const double h = 1.0 / 5, volumeTolerance = 0.02 * h * one.machinedArea;
+  EXPECT_GT(one.report.stats.removed_volume_mm3, 100.0);
+  expectSameCollisions(batched.report, one.report, 1e-6);
+  for (std::size_t i = 0; i < one.report.collisions.size() && i < batched.report.collisions.size();
+       ++i)
+    EXPECT_NEAR(batched.report.collisions[i].path_s, one.report.collisions[i].path_s, 1e-9) << i;
+  ASSERT_EQ(batched.report.stats.tools.size(), one.report.stats.tools.size());
+  for (std::size_t i = 0; i < one.report.stats.tools.size(); ++i) {
+    EXPECT_NEAR(batched.report.stats.tools[i].cutting_time_s,
+                one.report.stats.tools[i].cutting_time_s, 1e-9);
+    EXPECT_NEAR(batched.report.stats.tools[i].removed_volume_mm3,
+                one.report.stats.tools[i].removed_volume_mm3, volumeTolerance);
   }
-  EXPECT_NEAR(batched.stats.removed_volume_mm3, one.stats.removed_volume_mm3,
-              1e-5 * one.stats.removed_volume_mm3);
-  EXPECT_EQ(batched.overhang.first_line, one.overhang.first_line);
-  if (brickZ == -1) {
-    EXPECT_NEAR(batched.stats.removed_volume_mm3, one.stats.removed_volume_mm3,
-                1e-6 * one.stats.removed_volume_mm3);
-    EXPECT_EQ(batched.mdh.leaves, one.mdh.leaves);
-    EXPECT_EQ(batched.overhang.events, one.overhang.events);
-  }
+  EXPECT_NEAR(batched.report.stats.removed_volume_mm3, one.report.stats.removed_volume_mm3,
+              volumeTolerance);
+  EXPECT_EQ(batched.report.overhang.first_line, one.report.overhang.first_line);
+  expectSameSamples(*batched.stock, *one.stock, h / 4);
 }
 
 TEST_P(CutBatching, RandomProgramsGiveTheReportOfOneByOne) {
@@ -149,18 +204,20 @@ TEST_P(CutBatching, LazyCrossingsGiveTheReportOfEagerOnes) {
 }
 
 // The bricks' shape is the engine's business: bricks as tall as the stock (a 3-axis
-// machine's default) give the report of cubic ones, up to the maps' discretisation
-// where the shank buries the flutes and cells turn or split differently.
+// machine's default) hold the samples of cubic ones, and so their collisions, with
+// the volume up to the maps' discretisation where the shank buries the flutes and
+// cells turn or split differently (as expectSameReport above; 1.1e-3 of the removed
+// volume seen over seeds 1-400, seed 20).
 TEST_P(CutBatching, BricksAsTallAsTheStockGiveTheReportOfCubes) {
   const std::string program = randomProgram(GetParam());
-  const Report cubes = runWith(program, 16, -1), tall = runWith(program, 16, 0);
-  EXPECT_LT(tall.mdh.cells, cubes.mdh.cells);
-  expectSameCollisions(tall, cubes, 1e-6);
-  // Seeds 1 and 2 differ by 0.03 % and 0.002 % (removed volume, density 5), where density
-  // 5 itself is 0.1 % from density 20 (either shape): the maps' discretisation.
-  EXPECT_NEAR(tall.stats.removed_volume_mm3, cubes.stats.removed_volume_mm3,
-              5e-4 * cubes.stats.removed_volume_mm3);
-  EXPECT_EQ(tall.overhang.first_line, cubes.overhang.first_line);
+  const Kept cubes = runKeeping(program, 16, -1), tall = runKeeping(program, 16, 0);
+  const double h = 1.0 / 5;
+  EXPECT_LT(tall.report.mdh.cells, cubes.report.mdh.cells);
+  expectSameCollisions(tall.report, cubes.report, 1e-6);
+  EXPECT_NEAR(tall.report.stats.removed_volume_mm3, cubes.report.stats.removed_volume_mm3,
+              0.02 * h * cubes.machinedArea);
+  EXPECT_EQ(tall.report.overhang.first_line, cubes.report.overhang.first_line);
+  expectSameSamples(*tall.stock, *cubes.stock, h / 4);
 }
 
 // A batch's chain less the points Douglas-Peucker drops within half the job's
