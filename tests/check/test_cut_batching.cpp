@@ -142,12 +142,12 @@ void expectSameSamples(const mdh::Stock& got, const mdh::Stock& want, double tol
 // one, a step may leave a transient overhang that a later step of the same batch
 // removes (a plunge burying the shank, then a cut above it): the slow path then splits
 // or turns cells the batch never touches. The two stocks hold the same samples: every
-// grid line the same solid intervals, an end moved at most a quarter of a grid
-// spacing (a crossing an edge gets from both ends the union may place elsewhere in
-// the edge; 0.12 h seen over seeds 1-400, on ~1 % of the lines), so the collisions
-// are the same. Volumes integrate each cell's surface between its lines in the
-// cell's own direction: where cells turned differently they differ by the maps'
-// discretisation (up to 1.3e-3 of the removed volume seen, seed 53: a 10 x 6 mm
+// grid line the same solid intervals, an end moved at most a grid spacing (an edge
+// cut from both ends keeps one crossing per level, which the steps and their union
+// may place anywhere in the edge: up to 0.12 h on 1-2 % of the lines, 0.98 h on 2 of
+// 9045 in seed 176, over seeds 1-400), so the collisions are the same. Volumes integrate each
+// cell's surface between its lines in the cell's own direction: where cells turned differently they
+// differ by the maps' discretisation (up to 1.3e-3 of the removed volume seen, seed 53: a 10 x 6 mm
 // wall between two rows of columns, in a +x map one way and a +y map the other),
 // bounded here by a fiftieth of a grid spacing over the machined surface.
 void expectSameReport(const std::string& program, int brickZ) {
@@ -168,7 +168,7 @@ void expectSameReport(const std::string& program, int brickZ) {
   EXPECT_NEAR(batched.report.stats.removed_volume_mm3, one.report.stats.removed_volume_mm3,
               volumeTolerance);
   EXPECT_EQ(batched.report.overhang.first_line, one.report.overhang.first_line);
-  expectSameSamples(*batched.stock, *one.stock, h / 4);
+  expectSameSamples(*batched.stock, *one.stock, h);
 }
 
 TEST_P(CutBatching, RandomProgramsGiveTheReportOfOneByOne) {
@@ -217,7 +217,7 @@ TEST_P(CutBatching, BricksAsTallAsTheStockGiveTheReportOfCubes) {
   EXPECT_NEAR(tall.report.stats.removed_volume_mm3, cubes.report.stats.removed_volume_mm3,
               0.02 * h * cubes.machinedArea);
   EXPECT_EQ(tall.report.overhang.first_line, cubes.report.overhang.first_line);
-  expectSameSamples(*tall.stock, *cubes.stock, h / 4);
+  expectSameSamples(*tall.stock, *cubes.stock, h);
 }
 
 // A batch's chain less the points Douglas-Peucker drops within half the job's
