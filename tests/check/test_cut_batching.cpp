@@ -145,14 +145,16 @@ void expectSameSamples(const mdh::Stock& got, const mdh::Stock& want, double tol
 // grid line the same solid intervals, an end moved at most a grid spacing (an edge
 // cut from both ends keeps one crossing per level, which the steps and their union
 // may place anywhere in the edge: up to 0.12 h on 1-2 % of the lines, 0.98 h on 2 of
-// 9045 in seed 176, over seeds 1-400), so the collisions are the same. Volumes integrate each
-// cell's surface between its lines in the cell's own direction: where cells turned differently they
-// differ by the maps' discretisation (up to 1.3e-3 of the removed volume seen, seed 53: a 10 x 6 mm
-// wall between two rows of columns, in a +x map one way and a +y map the other),
-// bounded here by a fiftieth of a grid spacing over the machined surface.
+// 9045 in seed 176, over seeds 1-400), so the collisions are the same. Volumes
+// integrate each cell's surface between its lines in the cell's own direction: where
+// cells turned differently they differ by the maps' discretisation (seed 53: a 10 x 6
+// mm wall between two rows of columns, in a +x map one way and a +y map the other,
+// 1.3e-3 of the removed volume), bounded here by a twentieth of a grid spacing over
+// the machined surface. The grid lines' own trapezoid sums along x, y and z spread as
+// far (0.041 h over the surface, seed 322).
 void expectSameReport(const std::string& program, int brickZ) {
   const Kept one = runKeeping(program, 1, brickZ), batched = runKeeping(program, 16, brickZ);
-  const double h = 1.0 / 5, volumeTolerance = 0.02 * h * one.machinedArea;
+  const double h = 1.0 / 5, volumeTolerance = 0.05 * h * one.machinedArea;
   EXPECT_GT(one.report.stats.removed_volume_mm3, 100.0);
   expectSameCollisions(batched.report, one.report, 1e-6);
   for (std::size_t i = 0; i < one.report.collisions.size() && i < batched.report.collisions.size();
@@ -206,8 +208,8 @@ TEST_P(CutBatching, LazyCrossingsGiveTheReportOfEagerOnes) {
 // The bricks' shape is the engine's business: bricks as tall as the stock (a 3-axis
 // machine's default) hold the samples of cubic ones, and so their collisions, with
 // the volume up to the maps' discretisation where the shank buries the flutes and
-// cells turn or split differently (as expectSameReport above; 1.1e-3 of the removed
-// volume seen over seeds 1-400, seed 20).
+// cells turn or split differently (as expectSameReport above; 0.027 h over the machined
+// surface, 3.8e-3 of the removed volume, in seed 322 of 1-400).
 TEST_P(CutBatching, BricksAsTallAsTheStockGiveTheReportOfCubes) {
   const std::string program = randomProgram(GetParam());
   const Kept cubes = runKeeping(program, 16, -1), tall = runKeeping(program, 16, 0);
@@ -215,7 +217,7 @@ TEST_P(CutBatching, BricksAsTallAsTheStockGiveTheReportOfCubes) {
   EXPECT_LT(tall.report.mdh.cells, cubes.report.mdh.cells);
   expectSameCollisions(tall.report, cubes.report, 1e-6);
   EXPECT_NEAR(tall.report.stats.removed_volume_mm3, cubes.report.stats.removed_volume_mm3,
-              0.02 * h * cubes.machinedArea);
+              0.05 * h * cubes.machinedArea);
   EXPECT_EQ(tall.report.overhang.first_line, cubes.report.overhang.first_line);
   expectSameSamples(*tall.stock, *cubes.stock, h);
 }
