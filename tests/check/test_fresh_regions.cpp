@@ -129,11 +129,14 @@ TEST_P(FreshRegions, RandomFiveAxisProgramsGiveTheReportOfEagerCrossings) {
   EXPECT_EQ(lazy.overhang.events, eager.overhang.events);
   EXPECT_EQ(lazy.overhang.area_mm2, eager.overhang.area_mm2);
   ASSERT_EQ(lazy.stats.tools.size(), eager.stats.tools.size());
+  // A tool may only rapid or cut air after its change (7 seeds of 1-400); not all do.
+  double cutting = 0.0;
   for (std::size_t i = 0; i < eager.stats.tools.size(); ++i) {
-    EXPECT_GT(eager.stats.tools[i].cutting_time_s, 0.0) << i;
+    cutting += eager.stats.tools[i].cutting_time_s;
     EXPECT_EQ(lazy.stats.tools[i].cutting_time_s, eager.stats.tools[i].cutting_time_s) << i;
     EXPECT_EQ(lazy.stats.tools[i].removed_volume_mm3, eager.stats.tools[i].removed_volume_mm3);
   }
+  EXPECT_GT(cutting, 0.0);
   expectSameCollisions(lazy, eager);
 }
 
