@@ -1,6 +1,7 @@
 // Read-only questions to the stock: membership, intervals, volume, area, probes.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -9,6 +10,7 @@
 #include "sim/mdh/interval_cache.h"
 #include "sim/mdh/line_segments.h"
 #include "sim/mdh/stock.h"
+#include "sim/mdh/three_map.h"
 
 namespace mdhd::mdh {
 
@@ -100,7 +102,49 @@ const Cell* Stock::leafAt(const glm::dvec3& g) const {
   return c;
 }
 
+namespace {
+
+// A point of a square that a wall crosses between two rows of columns, the wall
+// holding the map's axis (a 3-map keeps it in the crossings of the edges across the
+// square, exactly on every grid line; bilinear parent heights would blur it over
+// most of a grid spacing): its side of the wall at its level, from the crossings of
+// the square's two edges of one family at the grid levels around it. Nothing when
+// the square's columns do not make one such wall there.
+std::optional<bool> wallSide(const ThreeMap& m, const glm::dvec3& g, int iu, int iv, double tu,
+                             double tv) {
+  const int a = m.axis(), u = m.uAxis(), v = m.vAxis();
+  const GridBox& box = m.box();
+  const int l0 = static_cast<int>(std::floor(g[a]));
+  if (!m.threeWay() || l0 < box.lo[a] || l0 + 1 > box.hi[a]) return std::nullopt;
+  const double ta = g[a] - l0;
+  for (int f = 0; f < 2; ++f) {
+    // f 0: the edges iu -> iu + 1 of rows iv and iv + 1; f 1: iv -> iv + 1 of rows iu, iu + 1.
+    const int e = f == 0 ? iu : iv, r0 = f == 0 ? iv : iu;
+    bool side = false;  // the edges' first column solid (the wall's solid side)
+    double at[2];
+    bool wall = true;
+    for (int j = 0; j < 2 && wall; ++j) {
+      const int r = r0 + j;
+      const auto solid = [&](int k) {
+        return f == 0 ? m.columnSolidAt(e, r, k) : m.columnSolidAt(r, e, k);
+      };
+      const bool s = solid(l0);
+      const double x0 = m.edgeCrossing(f, r, e, l0), x1 = m.edgeCrossing(f, r, e, l0 + 1);
+      wall = s == solid(l0 + 1) && (j == 0 || s == side) && !std::isnan(x0) && !std::isnan(x1);
+      side = s;
+      at[j] = x0 + ta * (x1 - x0);
+    }
+    if (!wall) continue;
+    const double across = f == 0 ? tv : tu, along = f == 0 ? g[u] : g[v];
+    return (along <= at[0] + across * (at[1] - at[0])) == side;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 bool Stock::isSolid(const glm::dvec3& p) const {
+  ensureSettled();  // a z map's crossings may be pending (lazy_crossings.h)
   glm::dvec3 g;
   for (int a = 0; a < 3; ++a) {
     g[a] = grid_.toGrid(a, p[a]);
@@ -118,6 +162,7 @@ bool Stock::isSolid(const glm::dvec3& p) const {
   const int iu = std::min(static_cast<int>(fu), box.cubes(u) - 1);
   const int iv = std::min(static_cast<int>(fv), box.cubes(v) - 1);
   const double tu = fu - iu, tv = fv - iv;
+  if (const std::optional<bool> side = wallSide(m, g, iu, iv, tu, tv)) return *side;
   const double below = box.lo[a] - 1.0, above = box.hi[a] + 1.0;
   auto depth = [&](int du, int dv) {
     const double x = std::clamp(m.height(iu + du, iv + dv), below, above);

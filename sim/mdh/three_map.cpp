@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <utility>
 
 namespace mdhd::mdh {
@@ -47,6 +48,17 @@ void ThreeMap::rowColumns(int family, int index, int n, double* heights, std::ui
 
 void ThreeMap::straddle(double h1, double h2, int& first, int& count) const {
   straddleCounts(solidCount(h1), solidCount(h2), first, count);
+}
+
+double ThreeMap::edgeCrossing(int family, int index, int edge, int level) const {
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  if (!threeWay_) return kNone;
+  const int at = straddleEdge(family, index, edge).indexOf(level);
+  if (at < 0) return kNone;
+  std::size_t pos = 0;
+  for (int e = 0; e < edge; ++e) pos += straddleEdge(family, index, e).total();
+  const std::vector<double>& r = rows_[family][index];
+  return pos + at < r.size() ? r[pos + at] : kNone;
 }
 
 double ThreeMap::interpolatedCrossing(double h0, double h1, int edgeStart, int level) const {

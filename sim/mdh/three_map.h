@@ -218,6 +218,11 @@ class ThreeMap {
   double rowHeight(int family, int index, int edge) const {
     return family == 0 ? height(edge, index) : height(index, edge);
   }
+  // The embedded crossing on edge `edge` of row `index` (family as row()) at grid
+  // `level`, an absolute coordinate along the edge; NaN where the edge holds none
+  // there, in a plain heightmap, or where the row is not packed as its columns say.
+  // Walks the row from its start (rows have no index): for queries, not cuts.
+  double edgeCrossing(int family, int index, int edge, int level) const;
   // The crossing on an edge at `level` when no embedded heights are stored:
   // linear interpolation between the two parent heights.
   double interpolatedCrossing(double h0, double h1, int edgeStart, int level) const;

@@ -73,6 +73,23 @@ TEST(StockQueries, RemovesMaterialLooksPastCutsStillToBeMade) {
   EXPECT_FALSE(s.removesMaterial(SphereSolid({2, 2, 7}, 1.0), nullptr, {}, {2, 2, 7}));
 }
 
+// A wall along a map's axis between two rows of its columns: isSolid takes it from
+// the crossings on the edges across (exact at every grid line), not from the parent
+// heights, whose bilinear blend put it half a grid spacing off (y = 2.0495 here).
+TEST(StockQueries, IsSolidFindsAWallBetweenTwoRowsOfColumns) {
+  Stock s(kStock, options(32));
+  s.cut(BoxSolid({-1, 2.03, 2.0}, {11, 4.0, 4.0}), {1, 0, 0});  // a tunnel along x
+  int xMaps = 0;
+  s.forEachLeaf([&](const LeafView& l) { xMaps += l.map != nullptr && l.map->axis() == 0; });
+  ASSERT_GT(xMaps, 0);  // the wall y = 2.03 lies along the columns of an x map
+  for (double x : {1.0, 5.03, 9.37})
+    for (double z : {2.15, 2.5, 3.0, 3.05, 3.85})  // not in the squares of its corners
+      for (double y = 1.905; y < 2.2; y += 0.01) {
+        const bool inTunnel = y > 2.03 && y < 4.0;
+        EXPECT_EQ(s.isSolid({x, y, z}), !inTunnel) << x << " " << y << " " << z;
+      }
+}
+
 TEST(StockQueries, AreaOfAPocketByNormalDirection) {
   Stock s(kStock, options(0));
   s.cut(BoxSolid({2, 2, 4}, {5, 6, 7}), {0, 0, 1});
