@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "protocol/machine_json.h"
@@ -132,6 +133,23 @@ JobOptions options(const json& j, const std::string& field) {
   return o;
 }
 
+// The engine snaps the stock's max corner to the nearest grid plane; a grid spacing
+// longer than a side of the stock would grow or shrink that side by most of a spacing
+// (a 40 mm stock at 0.001 points/mm became a 1 m cube and ran "clean").
+void gridFitsStock(const geom::Aabb& stock, double density) {
+  int a = 0;  // the shortest side decides
+  for (int b = 1; b < 3; ++b)
+    if (stock.hi[b] - stock.lo[b] < stock.hi[a] - stock.lo[a]) a = b;
+  const double extent = stock.hi[a] - stock.lo[a];
+  if (extent * density >= 1.0) return;
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "a grid spacing of %g mm (%g points/mm) is longer than the stock's %g mm along "
+                "%c: give at least %g points/mm",
+                1.0 / density, density, extent, "xyz"[a], 1.0 / extent);
+  throw FieldError("options.density", text);
+}
+
 }  // namespace
 
 const geom::Tool* Job::findTool(int number) const {
@@ -186,6 +204,7 @@ Job jobFromJson(const json& j, ProgramRequirement program) {
     throw FieldError("program", "missing (give program or program_file)");
   }
   if (const json* o = optional(j, "options")) job.options = options(*o, "options");
+  gridFitsStock(job.stock, job.options.density);
   if (const json* m = optional(j, "modbus")) {
     if (!m->is_object()) fail("modbus", "an object (the register map of service.md)", *m);
     job.modbus = *m;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,19 @@ glm::dvec3 usableDirection(const glm::dvec3& d) {
   return d;
 }
 
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f", x);
+  return text;
+}
+
+// Too fine a grid: what the job can change is the density (the brick is check's).
+std::string gridMessage(const std::string& what, double density) {
+  char text[64];
+  std::snprintf(text, sizeof text, "mdh: at %g points/mm ", density);
+  return text + what + ": lower the density";
+}
+
 }  // namespace
 
 Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(options)) {
@@ -50,8 +64,10 @@ Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(o
     // The max corner snaps to the nearest grid plane.
     const double cubes = std::max(1.0, std::round(extent / grid_.h));
     if (cubes > kMaxCubesPerAxis)
-      throw std::invalid_argument(std::string("mdh: grid too fine along ") + kAxisNames[a] + " (" +
-                                  std::to_string(cubes) + " cubes)");
+      throw std::invalid_argument(gridMessage("the stock is " + number(cubes) +
+                                                  " grid cubes along " + kAxisNames[a] +
+                                                  ", more than " + number(kMaxCubesPerAxis),
+                                              options_.density));
     grid_.cubes[a] = static_cast<int>(cubes);
     const int size = a == 2 && options_.brick_z >= 0 ? options_.brick_z : options_.brick;
     brickSize_[a] = size > 0 ? size : grid_.cubes[a];
@@ -67,8 +83,11 @@ Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(o
                                 " grid points are too large to unpack; use a brick size of at "
                                 "most 256 (or a coarser density)");
   if (bricks > kMaxBricks)
-    throw std::invalid_argument("mdh: too many bricks (" + std::to_string(bricks) +
-                                "); use a larger brick size");
+    throw std::invalid_argument(
+        gridMessage("the stock's grid of " + number(grid_.cubes[0]) + " x " +
+                        number(grid_.cubes[1]) + " x " + number(grid_.cubes[2]) + " cubes needs " +
+                        number(double(bricks)) + " bricks, more than " + number(double(kMaxBricks)),
+                    options_.density));
   roots_.resize(static_cast<std::size_t>(bricks));
   for (int z = 0; z < bricks_[2]; ++z)
     for (int y = 0; y < bricks_[1]; ++y)

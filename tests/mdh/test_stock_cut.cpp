@@ -42,6 +42,15 @@ TEST(StockCut, RejectsBadBoxesAndDensities) {
   EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
   o.density = 1e7;
   EXPECT_THROW(Stock(kStock, o), std::invalid_argument);
+  o.density = 1e4;  // 1e5 x 8e4 x 6e4 cubes: under the per-axis limit, far too many bricks
+  o.brick = 32;
+  try {
+    Stock(kStock, o);
+    ADD_FAILURE() << "a grid of 4.8e14 cubes was accepted";
+  } catch (const std::invalid_argument& e) {
+    // The job can change its density, not the brick: the message says so.
+    EXPECT_NE(std::string(e.what()).find("lower the density"), std::string::npos) << e.what();
+  }
   o.density = 100;  // one root cell of 1001 x 801 x 601 points is too large to unpack
   o.brick = 0;
   EXPECT_THROW(Stock(kStock, o), std::invalid_argument);

@@ -108,6 +108,26 @@ TEST(JobJson, WorkOffsetsAndFixtures) {
   EXPECT_DOUBLE_EQ(job.fixtures[1].axis.z, 1.0);  // normalised
 }
 
+// A grid spacing longer than a side of the stock would resize that side by most of a
+// spacing (the engine snaps the max corner to the grid): refused, saying what density fits.
+TEST(JobJson, GridSpacingLongerThanAStockSideIsRefused) {
+  json j = minimalJob();  // 100 x 80 x 40 mm
+  j["options"] = {{"density", 0.001}};
+  try {
+    jobFromJson(j);
+    ADD_FAILURE() << "a 1000 mm grid spacing on a 40 mm stock was accepted";
+  } catch (const FieldError& e) {
+    EXPECT_EQ(e.field(), "options.density");
+    EXPECT_NE(e.message().find("along z"), std::string::npos) << e.message();
+    EXPECT_NE(e.message().find("at least 0.025 points/mm"), std::string::npos) << e.message();
+  }
+  j["options"] = {{"density", 0.025}};  // exactly one spacing along z
+  EXPECT_NO_THROW(jobFromJson(j));
+  j["stock"]["box"]["min"][2] = -0.05;  // a 0.05 mm sheet at the default 10 points/mm
+  j.erase("options");
+  EXPECT_EQ(fieldOfError(j), "options.density");
+}
+
 TEST(JobJson, ErrorsNameTheField) {
   json j = minimalJob();
   j["stock"]["box"]["max"][2] = -50;
