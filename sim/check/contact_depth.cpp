@@ -96,8 +96,15 @@ Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& pa
   const int y1 =
       std::min(grid.iy_max, static_cast<int>(std::floor((box.hi.y - grid.origin_y) / grid.h)));
   if (x0 > x1 || y0 > y1) return out;
-  const int stride =
-      std::max(1, (std::max(x1 - x0, y1 - y0) + kMaxDepthLinesPerAxis) / kMaxDepthLinesPerAxis);
+  // Each axis its own stride: one shared by both skipped the middle line of a thin part's
+  // long sweep (a 0.15 mm shank dragged 10 mm at 20 points/mm: every 4th of its 3 lines
+  // across, the deepest never sampled and the contact lost).
+  const auto strideOf = [](int lines) {
+    return std::max(1, (lines + kMaxDepthLinesPerAxis) / kMaxDepthLinesPerAxis);
+  };
+  const int sx = strideOf(x1 - x0), sy = strideOf(y1 - y0);
+  // Strided lines run through the box's middle line, where a part is often deepest.
+  const int xs = x0 + ((x1 - x0) / 2) % sx, ys = y0 + ((y1 - y0) / 2) % sy;
   // Samples one overlap of line (x, y); true once a sample is deeper than `enough`.
   const auto sample = [&](double x, double y, double lo, double hi) {
     const int n = std::clamp(static_cast<int>(std::ceil((hi - lo) / grid.h)) + 1, 2,
@@ -119,8 +126,8 @@ Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& pa
   };
   std::vector<Found> found;  // early out: the overlaps, longest (likely deepest) first
   std::vector<geom::Interval> mat, tool, both;
-  for (int iy = y0; iy <= y1; iy += stride) {
-    for (int ix = x0; ix <= x1; ix += stride) {
+  for (int iy = ys; iy <= y1; iy += sy) {
+    for (int ix = xs; ix <= x1; ix += sx) {
       const double x = grid.origin_x + ix * grid.h, y = grid.origin_y + iy * grid.h;
       tool.clear();
       sweep.lineIntervals(2, x, y, tool);

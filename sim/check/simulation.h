@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "sim/check/contact_depth.h"
@@ -155,6 +156,8 @@ class Simulation final : public gcode::MotionSink {
     geom::ToolPart cutter, shank, holder;
     double reach = 0.0;
     PartBall shankBall, holderBall;
+    // Why no contact of this tool could be reported (blindTo), "" when it can.
+    std::string blind;
   };
   struct Step;
   struct ForkTag {};

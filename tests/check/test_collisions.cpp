@@ -2,6 +2,7 @@
 // episode, its first line, the place of first contact and the depth.
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -139,6 +140,64 @@ TEST(Collisions, ContactsShallowerThanTheToleranceAreNotCollisions) {
                                          "G0 Z5\nM5\nM30\n");
   EXPECT_TRUE(r.collisions.empty());
   EXPECT_EQ(r.status, Status::kClean);
+}
+
+// A thin tool dragged sideways through the stock: the shank's contact is as deep as
+// its radius at every density (the depth lines once shared one stride between x and y,
+// so a 10 mm move skipped the shank's middle line from 15 points/mm on and lost it).
+TEST(Collisions, ThinShankDraggedThroughTheStockAtAnyDensity) {
+  for (const double diameter : {0.15, 1.0}) {
+    for (const double density : {7.0, 10.0, 15.0, 20.0, 30.0}) {
+      Rig s;
+      s.options.density = density;
+      geom::Tool t = flatTool();
+      t.diameter = t.shank_diameter = diameter;
+      s.tools.push_back(t);
+      const Report r = run(std::move(s), std::string(kStart) +
+                                             "M3 S9000\nG0 X20 Y20 Z5\n"  // 4-5
+                                             "G1 Z-15 F200\n"             // 6: the shank from -5 up
+                                             "G1 X30 F400\n"              // 7: through 5 mm of wall
+                                             "M5\nM30\n");
+      const auto shank = ofType(r, CollisionType::kShankContact);
+      ASSERT_EQ(shank.size(), 1u) << diameter << " mm at " << density << " points/mm";
+      EXPECT_EQ(shank[0]->line, 7);
+      EXPECT_NEAR(shank[0]->depth, diameter / 2, 1e-3) << diameter << " mm at " << density;
+    }
+  }
+}
+
+// No contact of a part narrower than twice the contact tolerance could be reported
+// (nothing lies deeper in it than its radius): its first motion is an error, not a
+// "clean" run. A tool in the table that the program never uses blocks nothing.
+TEST(Collisions, ToolTooThinForTheContactToleranceIsAnErrorAtItsFirstMove) {
+  const auto rig = [](double cutter, double shank) {
+    Rig s;
+    s.options.density = 5;  // contact tolerance 0.1 mm
+    s.tools.push_back(flatTool(1));
+    geom::Tool thin = flatTool(2);
+    thin.diameter = cutter;
+    thin.shank_diameter = shank;
+    s.tools.push_back(thin);
+    return s;
+  };
+  const std::string program = "G21 G90 G17\nT2 M6\nG43 H2\nM3 S9000\nG0 X20 Y20 Z5\nG0 Z-1\nM30\n";
+  for (const auto& [cutter, shank, part] :
+       {std::tuple{0.2, 1.0, "cutter"}, std::tuple{1.0, 0.15, "shank"}}) {
+    try {
+      run(rig(cutter, shank), program);
+      ADD_FAILURE() << "a " << part << " too thin to report was simulated";
+    } catch (const gcode::GcodeError& e) {
+      EXPECT_EQ(e.pos().line, 5);
+      const std::string what = e.what();
+      EXPECT_NE(what.find(std::string("tool 2's ") + part), std::string::npos) << what;
+      EXPECT_NE(what.find("options.density above"), std::string::npos) << what;
+    }
+  }
+  // Tool 1 only: the thin tool 2 in the table is never loaded.
+  const Report r =
+      run(rig(0.2, 1.0), std::string(kStart) + "M3 S9000\nG0 X20 Y20 Z5\nG0 Z-1\nM30\n");
+  ASSERT_EQ(r.collisions.size(), 1u);
+  EXPECT_EQ(r.collisions[0].type, CollisionType::kRapidIntoStock);
 }
 
 TEST(Collisions, CutterIntoAFixtureBelowTheStock) {
