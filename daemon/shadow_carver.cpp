@@ -92,6 +92,11 @@ void ShadowCarver::cut(const PollSample& from, const PollSample& to, const Kind&
   m.tool = kind.tool;
   m.spindle = kind.spindle;
   const double seconds = std::max(0.0, std::chrono::duration<double>(to.t - from.t).count());
+  // The machine moves a thin tool anyway, so it is carved; said once per tool.
+  if (const std::string& blind = sim_->blindReason(m.tool);
+      !blind.empty() && blind_said_.insert(m.tool).second)
+    out.errors.push_back("line " + std::to_string(kind.line) + ": " + blind +
+                         " (carved, its contacts not alarmed)");
   try {
     sim_->machineMotion(m, seconds);
   } catch (const gcode::GcodeError& e) {

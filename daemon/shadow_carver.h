@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -83,6 +84,7 @@ class ShadowCarver {
   std::optional<PollSample> last_;
   Kind last_kind_;
   std::optional<std::size_t> cursor_;
+  std::set<int> blind_said_;  // thin tools already reported (Simulation::blindReason)
   std::size_t alarms_seen_ = 0;
 };
 

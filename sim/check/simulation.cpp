@@ -198,7 +198,15 @@ void Simulation::checkCancel() const {
 }
 
 void Simulation::motion(const gcode::Motion& m) {
+  if (const std::string& blind = blindReason(m.tool); !blind.empty())
+    throw gcode::GcodeError(m.pos, blind);
   simulate(m, nullptr);
+}
+
+const std::string& Simulation::blindReason(int tool) const {
+  static const std::string kNone;
+  const auto it = tools_.find(tool);
+  return it == tools_.end() ? kNone : it->second.blind;
 }
 
 void Simulation::machineMotion(const gcode::Motion& m, double seconds) {
@@ -220,7 +228,6 @@ void Simulation::simulate(const gcode::Motion& m, const double* known_seconds) {
       break;
   }
   const ToolParts* parts = partsFor(m.tool);
-  if (parts != nullptr && !parts->blind.empty()) throw gcode::GcodeError(m.pos, parts->blind);
   try {
     const kin::JointPath path(kin_, m, parts != nullptr ? parts->tool.length : 0.0);
     checkLimits(m, path);

@@ -87,14 +87,20 @@ class Simulation final : public gcode::MotionSink {
 
   // Throws gcode::GcodeError at the motion's place when it cannot be simulated (a
   // singular tool-centre-point pose, a half-turn of the tool axis within one fixed
-  // step), Cancelled when cancelled.
+  // step, a tool too thin for any of its contacts to be told: blindReason), Cancelled
+  // when cancelled.
   void motion(const gcode::Motion& m) override;
   void event(const gcode::Event& e) override;
 
   // A motion whose machine time is known rather than programmed (a live machine's
   // move between two polls, m.feed unused): checked and cut exactly as motion(m),
-  // `seconds` added to the cycle time. Same exceptions as motion().
+  // `seconds` added to the cycle time. Same exceptions as motion(), except that a
+  // thin tool is cut all the same (the machine moves it anyway; the stock must follow).
   void machineMotion(const gcode::Motion& m, double seconds);
+
+  // Why no contact of `tool` could pass the contact tolerance (its cutter or shank is
+  // no wider than twice it), or "" (also for an unknown tool).
+  const std::string& blindReason(int tool) const;
 
   // A copy to run ahead of this one (a look-ahead): the same machine, tools, fixtures
   // and options, a deep copy of the stock as it is now, the current tool and the

@@ -52,6 +52,25 @@ TEST(ShadowCarver, SamplesOnAStraightLineAreOneMotionAndCutTheSlot) {
   EXPECT_NEAR(carver.simulation().snapshot(0).stats.cycle_time_s, 0.21, 1e-9);
 }
 
+// A tool too thin for any contact to pass the tolerance (check refuses it): the machine
+// moves it anyway, so the shadow carves it and says so once, not at every motion.
+TEST(ShadowCarver, AThinToolIsCarvedAndReportedOnce) {
+  protocol::Job job = cellJob();
+  job.tools[0].diameter = job.tools[0].shank_diameter = 0.2;  // density 5: tolerance 0.1
+  const kin::Kinematics kin(*job.machine);
+  ShadowCarver carver(job, kin, nullptr);
+  const double full = carver.simulation().stock().volume();
+  std::vector<PollSample> batch{at(10, 10, 5, 0), at(10, 10, -2, 10)};
+  for (int i = 1; i <= 5; ++i) batch.push_back(at(10 + i, 10 + (i % 2), -2, 10 + 10 * i));
+  const CarveResult r = carver.carve(batch);
+  EXPECT_EQ(r.motions, 6);  // a zigzag: no two moves on one line
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_NE(r.errors[0].find("tool 1's cutter"), std::string::npos) << r.errors[0];
+  EXPECT_GT(full - carver.simulation().stock().volume(), 0.0);  // carved all the same
+  const std::vector<PollSample> more{at(10, 10, 5, 100), at(12, 10, 5, 110)};
+  EXPECT_TRUE(carver.carve(more).errors.empty());
+}
+
 TEST(ShadowCarver, StandingStillAndResyncCutNothing) {
   const protocol::Job job = cellJob();
   const kin::Kinematics kin(*job.machine);
