@@ -1,10 +1,14 @@
 #include "daemon/job_files.h"
 
+#include <exception>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "protocol/job_json.h"
 #include "protocol/machine_json.h"
+#include "sim/kinematics/inverse.h"
+#include "sim/kinematics/kinematics.h"
 
 namespace mdhd::cli {
 namespace {
@@ -72,6 +76,14 @@ gcode::InterpreterConfig interpreterConfig(const LoadedJob& loaded) {
   }
   for (const geom::Tool& tool : job.tools) {
     config.tools.add({tool.number, tool.length, tool.diameter});
+  }
+  try {
+    auto kin = std::make_shared<const kin::Kinematics>(*job.machine);
+    config.tcp_switch = [kin](const gcode::AxisValues& m, double length, bool to_tcp) {
+      return kin::switchTcp(*kin, m, length, to_tcp);
+    };
+  } catch (const std::exception&) {
+    // A machine the kinematics refuse fails where the run builds its own, with the reason.
   }
   const std::filesystem::path dir =
       loaded.program_path.empty() ? loaded.base_dir : loaded.program_path.parent_path();

@@ -1,6 +1,7 @@
 // Modal settings of a block: feed mode, tools, spindle, coolant, plane, units,
 // cutter compensation, tool length, coordinate system.
 #include <cmath>
+#include <exception>
 #include <string>
 
 #include "sim/gcode/block_step.h"
@@ -160,7 +161,7 @@ void BlockExecutor::setToolLength(Step& st) {
   const int column = st.w.g_column[kGToolLength];
   if (s.comp_side != CompSide::kOff)
     st.fail("Cannot change tool offset with cutter radius compensation on", column);
-  const AxisValues machine = toMachine(s, s.current);
+  AxisValues machine = toMachine(s, s.current);
   auto lengthOf = [&](int tool) {
     if (tool == 0) return 0.0;
     const ToolEntry* entry = config_.tools.find(tool);
@@ -168,6 +169,8 @@ void BlockExecutor::setToolLength(Step& st) {
       st.failWord('H', "Requested tool " + std::to_string(tool) + " not found in the tool table");
     return entry->length;
   };
+  const bool wasTcp = s.tool_length_mode == 434;
+  const double tcpLength = wasTcp ? lengthOf(s.tool_length_tool) : 0.0;
   auto hWord = [&]() {
     const double h = st.w.get('H');
     if (h < 0 || h != std::floor(h)) st.failWord('H', "Negative or non-integer H word used");
@@ -208,6 +211,21 @@ void BlockExecutor::setToolLength(Step& st) {
       break;
   }
   s.tool_length_mode = g;
+  const bool isTcp = g == 434;
+  const double newTcpLength = isTcp ? lengthOf(s.tool_length_tool) : 0.0;
+  if ((wasTcp || isTcp) && (wasTcp != isTcp || tcpLength != newTcpLength) && config_.tcp_switch) {
+    // The machine does not move, but under G43.4 its X Y Z are the tip in W: an axis
+    // the next block leaves out must stay where the machine is, not where the old
+    // meaning of its value would put it (G49 after G43.4 once moved Y to the tip's Y).
+    try {
+      if (wasTcp) machine = config_.tcp_switch(machine, tcpLength, false);
+      if (isTcp) machine = config_.tcp_switch(machine, newTcpLength, true);
+    } catch (const std::exception& e) {
+      st.fail(std::string(isTcp ? "Cannot start" : "Cannot leave") + " G43.4 here: " + e.what(),
+              column);
+    }
+    out_.reexpress(machine);
+  }
   s.current = toProgram(s, machine);  // the machine does not move
   s.programmed = s.current;
 }

@@ -35,6 +35,13 @@ struct InterpreterConfig {
   // to stop a run that makes no motion for a long time (an o-word loop of
   // assignments), by throwing. Unset: nothing.
   std::function<void()> each_line;
+  // G43.4 switched on or off, or its tool changed: the machine does not move, but X Y Z
+  // change meaning (under G43.4 the tip in W, else the linear joints). Returns `machine`
+  // re-expressed: to_tcp, joints -> tip of a tool of `length`; else tip -> joints. May
+  // throw std::exception (no joints place that tip): an error at the G43.4 / G49 word.
+  // Unset: the values are kept as they are, which is right only where the tip in W is
+  // the linear joints (no rotary joint turns the tool or the part).
+  std::function<AxisValues(const AxisValues& machine, double length, bool to_tcp)> tcp_switch;
 };
 
 }  // namespace mdhd::gcode

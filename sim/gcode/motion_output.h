@@ -33,6 +33,8 @@ class MotionOutput {
            const Block& block, const FeedInfo& feed, bool comp);
   void event(const Event& e) { sink_.event(e); }
   const AxisValues& machine() const { return machine_; }
+  // The same place in new terms (G43.4 on or off): the next motion starts here.
+  void reexpress(const AxisValues& machine) { machine_ = machine; }
 
  private:
   void fill(MotionType type, const AxisValues& end, const InterpState& s, const Block& block,

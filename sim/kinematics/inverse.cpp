@@ -52,4 +52,15 @@ JointValues solveTipOrThrow(const Kinematics& kin, const glm::dvec3& tip, double
   return q;
 }
 
+gcode::AxisValues switchTcp(const Kinematics& kin, const gcode::AxisValues& machine, double length,
+                            bool to_tcp) {
+  if (!to_tcp) return solveTipOrThrow(kin, {machine[0], machine[1], machine[2]}, length, machine);
+  const glm::dvec3 tip = kin.toolPose(machine, length).tip;
+  gcode::AxisValues out = machine;
+  out[gcode::kX] = tip.x;
+  out[gcode::kY] = tip.y;
+  out[gcode::kZ] = tip.z;
+  return out;
+}
+
 }  // namespace mdhd::kin

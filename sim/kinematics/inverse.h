@@ -16,4 +16,10 @@ bool solveTip(const Kinematics& kin, const glm::dvec3& tip, double length, Joint
 JointValues solveTipOrThrow(const Kinematics& kin, const glm::dvec3& tip, double length,
                             JointValues q);
 
+// G43.4 switched on or off with the machine at rest: its values re-expressed, to_tcp
+// from joints to the tip in W of a tool of `length` (X Y Z), else back (solveTipOrThrow).
+// What gcode::InterpreterConfig::tcp_switch asks of the machine.
+gcode::AxisValues switchTcp(const Kinematics& kin, const gcode::AxisValues& machine, double length,
+                            bool to_tcp);
+
 }  // namespace mdhd::kin

@@ -10,6 +10,7 @@
 
 #include "sim/check/simulation.h"
 #include "sim/gcode/interpreter.h"
+#include "sim/kinematics/inverse.h"
 #include "sim/kinematics/presets.h"
 
 namespace mdhd::check::rig {
@@ -48,6 +49,9 @@ inline Report run(Rig setup, const std::string& program, const std::atomic<bool>
   for (const kin::Joint& j : setup.machine.joints)
     if (const auto a = kin::axisOfName(j.name)) config.axis_mask |= 1u << *a;
   for (const geom::Tool& t : setup.tools) config.tools.add({t.number, t.length, t.diameter});
+  config.tcp_switch = [&kin](const gcode::AxisValues& m, double length, bool to_tcp) {
+    return kin::switchTcp(kin, m, length, to_tcp);
+  };
   gcode::Interpreter interp(config, sim);
   interp.run(gcode::makeStringSource(program));
   Report report = sim.finish(static_cast<std::int64_t>(interp.blocksExecuted()));

@@ -308,6 +308,29 @@ TEST(Collisions, TiltedRapidIntoTheSideFace) {
   EXPECT_EQ(r.collisions.size(), 1u);
 }
 
+// A hole drilled along a tool tilted 45 degrees under G43.4, then G49 and a retract
+// that names Z only: the machine's X and Y stay where they are (G49 once put them at
+// the tip's W coordinates, dragging the tool sideways through the part: a false rapid
+// and holder contact and three times the volume).
+TEST(Collisions, RetractAfterLeavingG43_4KeepsTheUnnamedAxes) {
+  Rig s = trunnion();
+  s.options.density = 10;
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S8000\n"
+                                         "G0 A-45 C0\n"                      // 5
+                                         "G43.4 H1\n"                        // 6
+                                         "G0 X0 Y-3.535534 Z13.535534\n"     // 7: 5 mm off
+                                         "G1 X0 Y7.071068 Z2.928932 F200\n"  // 8: 10 deep
+                                         "G0 X0 Y-3.535534 Z13.535534\n"     // 9: back out
+                                         "G49\n"                             // 10
+                                         "G91 G0 Z30\n"                      // 11: straight up
+                                         "G90 M5\nM30\n");
+  EXPECT_EQ(r.status, Status::kClean);
+  EXPECT_TRUE(r.collisions.empty());
+  // A tilted plane cuts the cylinder symmetrically about its axis: pi r^2 x 10.
+  EXPECT_NEAR(r.stats.removed_volume_mm3, pi * 9 * 10, 0.015 * pi * 9 * 10);
+}
+
 TEST(Collisions, HolderOnA5AxisTilt) {
   // A short tool drilling into the tilted part's face until its holder meets the face.
   Rig s = trunnion();

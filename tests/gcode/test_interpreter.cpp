@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "oracle_support.h"
 
@@ -164,6 +167,43 @@ TEST(Interpreter, TcpModeOutputsTipInWorkFrame) {
   const Result arc = run("T1 M6\nG43.4 H1\nG2 X0 Y0 I1 J0 F100\n");
   ASSERT_TRUE(arc.error);
   EXPECT_STREQ(arc.error->what(), "Arcs are not supported under G43.4");
+}
+
+// Switching G43.4 on or off does not move the machine: its X Y Z are re-expressed by
+// the machine's kinematics (here a stand-in whose tip lies 7 mm along +Y of the joints
+// per 50 mm of tool), so an axis the next block leaves out stays where the machine is.
+TEST(Interpreter, TcpSwitchReexpressesThePositionAndTheMachineStays) {
+  InterpreterConfig c = baseConfig();
+  std::vector<std::pair<double, bool>> calls;
+  c.tcp_switch = [&calls](const AxisValues& m, double length, bool to_tcp) {
+    calls.emplace_back(length, to_tcp);
+    AxisValues out = m;
+    out[kY] += (to_tcp ? 7.0 : -7.0) * length / 50.0;
+    return out;
+  };
+  const Result r = run("T1 M6\nG0 X1 Y2 Z3\nG43.4 H1\nG0 Z10\nG43.4 H2\nG49\nG0 Z20\n", c);
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 3u);
+  expectEnd(r.motions[1], 1, 9, 10);  // tip: Y 2 + 7, Z as programmed
+  EXPECT_NEAR(r.motions[1].start[kY], 9.0, 1e-12);
+  expectEnd(r.motions[2], 1, 2, 20);  // joints again: Y back at 2, not the tip's 9
+  EXPECT_NEAR(r.motions[2].start[kY], 2.0, 1e-12);
+  // on (50), H1 -> H2 under G43.4 (off with 50, on with 75), off (75)
+  EXPECT_EQ(calls, (std::vector<std::pair<double, bool>>{
+                       {50, true}, {50, false}, {75, true}, {75, false}}));
+}
+
+TEST(InterpreterErrors, TcpSwitchTheKinematicsCannotMakeNamesTheWord) {
+  InterpreterConfig c = baseConfig();
+  c.tcp_switch = [](const AxisValues& m, double, bool to_tcp) {
+    if (!to_tcp) throw std::runtime_error("the linear joints cannot reach that tip");
+    return m;
+  };
+  const Result r = run("T1 M6\nG43.4 H1\nG0 X1\nG0 Z1 G49\n", c);
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Cannot leave G43.4 here: the linear joints cannot reach that tip");
+  EXPECT_EQ(r.error->line(), 4);
+  EXPECT_EQ(r.error->column(), 7);
 }
 
 TEST(Interpreter, TcpFlagIsSetOnMotions) {

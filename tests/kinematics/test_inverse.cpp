@@ -109,6 +109,32 @@ TEST(SolveTip, MovingTableRoundTrips) {
   }
 }
 
+// G43.4 switched on and off at rest (the interpreter's tcp_switch): to the tip and
+// back gives the same joints on every preset; rotary joints are never touched.
+TEST(SwitchTcp, JointsToTipAndBackOnEveryPreset) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> angle(-180, 180), coord(-300, 300);
+  for (const Machine& m : allPresets()) {
+    const Kinematics kin(m);
+    for (int i = 0; i < 50; ++i) {
+      JointValues q{};
+      for (int a = 0; a < gcode::kAxisCount; ++a)
+        if (kin.hasAxis(static_cast<gcode::Axis>(a)))
+          q[a] = a <= gcode::kZ ? coord(rng) : angle(rng);
+      const double length = 30 + (coord(rng) + 300) / 10;
+      const gcode::AxisValues tcp = switchTcp(kin, q, length, true);
+      EXPECT_VEC_NEAR(glm::dvec3(tcp[0], tcp[1], tcp[2]), kin.toolPose(q, length).tip, 1e-9);
+      const gcode::AxisValues back = switchTcp(kin, tcp, length, false);
+      for (int a = 0; a < gcode::kAxisCount; ++a) {
+        EXPECT_NEAR(back[a], q[a], 1e-9) << m.name << " axis " << a;
+        if (a > gcode::kZ) {
+          EXPECT_EQ(tcp[a], q[a]);
+        }
+      }
+    }
+  }
+}
+
 TEST(SolveTip, SingularMachineIsReported) {
   // Y parallel to X: no joint moves the tip along y.
   Machine m = presets::threeAxisMill();
