@@ -166,6 +166,27 @@ TEST(Collisions, ThinShankDraggedThroughTheStockAtAnyDensity) {
   }
 }
 
+// Drilled holes' volumes against the closed form, for tips from 90 to 170 degrees: a
+// blunt tip puts the wall's foot between grid levels, where the volume integral once
+// walked a wall's crossings out of order (+0.75 % at 10 points/mm for 170 degrees).
+TEST(Collisions, DrilledHolesRemoveTheirVolume) {
+  for (const double angle : {90.0, 118.0, 170.0}) {
+    Rig s;
+    s.options.density = 10;
+    geom::Tool t = flatTool();
+    t.shape = geom::ToolShape::kDrill;
+    t.tip_angle = angle;
+    s.tools.push_back(t);
+    const Report r =
+        run(std::move(s),
+            std::string(kStart) + "M3 S9000\nG0 X20 Y20 Z5\nG1 Z-10 F300\nG0 Z5\nM5\nM30\n");
+    const double h = 3 / std::tan(angle / 2 * pi / 180);  // the cone's height
+    const double hole = pi * 9 * (10 - h) + pi * 9 * h / 3;
+    EXPECT_NEAR(r.stats.removed_volume_mm3, hole, 0.004 * hole) << angle << " degrees";
+    EXPECT_EQ(r.status, Status::kClean);
+  }
+}
+
 // No contact of a part narrower than twice the contact tolerance could be reported
 // (nothing lies deeper in it than its radius): its first motion is an error, not a
 // "clean" run. A tool in the table that the program never uses blocks nothing.

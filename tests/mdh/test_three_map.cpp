@@ -1,6 +1,7 @@
 #include "sim/mdh/three_map.h"
 
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -63,6 +64,26 @@ TEST(ThreeMap, TrapezoidVolumeIsExactForAPlane) {
     for (int iu = 0; iu < up.columnsU(); ++iu) up.setHeight(iu, iv, 2.0 + 0.5 * iu);
   // 4 x 3 cross-section, height 2 + 0.5 x above z = 0: mean height 3.
   EXPECT_DOUBLE_EQ(up.volume(), 4 * 3 * 3.0);
+}
+
+// A wall between a column 100 high (the box's top) and one 22.57 high: the crossings
+// of levels 23..100 all lie on the wall, equal but for their last bits. The profile runs level by
+// level down the wall (sorted by position it once came in any level order and jumped across the
+// wall's height: a drilled hole with a 170-degree tip read 1.2 % large).
+TEST(ThreeMap, AWallsCrossingsAreOneStepWhateverTheirLastBits) {
+  const ThreeMap m(GridBox{{0, 0, 0}, {4, 3, 100}}, Direction{2, 1}, true);
+  const double wall = 0.4196, low = 22.57;
+  std::vector<double> crossings;
+  for (int level = 23; level <= 100; ++level)
+    crossings.push_back(1 + wall + ((level * 7919) % 5 - 2) * 1e-15);  // edge from 1 to 2
+  // Through (0, 100), down the wall from 100 to 23, then to (1, 22.57).
+  const double exact = wall * 100 + (1 - wall) * (23 + low) / 2;
+  EXPECT_NEAR(m.edgeIntegral(100, low, 1, crossings.data()), exact, 1e-9);
+  // The other way round: the crossings of the edge from the low column to the high one.
+  std::vector<double> back;
+  for (int level = 23; level <= 100; ++level)
+    back.push_back(1 + (1 - wall) + ((level * 104729) % 7 - 3) * 1e-15);
+  EXPECT_NEAR(m.edgeIntegral(low, 100, 1, back.data()), exact, 1e-9);
 }
 
 TEST(ThreeMap, RestrictionSplitsVolumeAndKeepsEmbeddedHeights) {
