@@ -14,6 +14,7 @@ constexpr const char* kServeUsage =
     "usage: mdhd serve [--config FILE] [--bind ADDR] [--port P] [--data-dir DIR]\n"
     "                  [--token T]... [--workers N] [--http-threads N] [--queue-limit N]\n"
     "                  [--max-body-bytes N] [--max-program-bytes N] [--max-job-seconds S]\n"
+    "                  [--max-mesh-mb N]\n"
     "                  [--shutdown-grace-seconds S] [--max-interruptions N] [--log-file FILE]\n"
     "                  [--no-example-machines]\n"
     "Settings: embedded defaults < config file < MDHD_* environment < flags (docs/daemon.md).\n";

@@ -3,6 +3,7 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <cctype>
 
 #include "daemon/number_text.h"
 #include "protocol/job_json.h"
@@ -60,11 +61,22 @@ int nestingDepth(const std::string& text) {
 
 constexpr int kMaxNesting = 64;
 
+// "application/json", in any case, with or without parameters ("; charset=utf-8").
+bool isJsonMediaType(const std::string& type) {
+  std::string media = type.substr(0, type.find(';'));
+  while (!media.empty() && (media.back() == ' ' || media.back() == '\t')) media.pop_back();
+  const std::size_t start = media.find_first_not_of(" \t");
+  if (start == std::string::npos) return false;
+  media.erase(0, start);
+  for (char& c : media) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return media == "application/json";
+}
+
 }  // namespace
 
 nlohmann::json parseJsonBody(const httplib::Request& req) {
   const std::string type = req.get_header_value("Content-Type");
-  if (!type.empty() && type.rfind("application/json", 0) != 0) {
+  if (!type.empty() && !isJsonMediaType(type)) {
     throw HttpError(415, "unsupported_media_type",
                     "the body must be application/json, not " + type);
   }

@@ -1,9 +1,19 @@
 #include "daemon/http_service.h"
 
 #include <httplib.h>
+#include <netdb.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <cctype>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
+#include <limits>
+#include <optional>
 #include <stdexcept>
+#include <string_view>
 
 #include "daemon/http_errors.h"
 
@@ -11,6 +21,265 @@ namespace mdhd::service {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+// What the connection loop and the handlers running on its thread share about the
+// connection being served (one per pool thread at a time).
+struct Connection {
+  Clock::time_point headDeadline;
+  bool inHead = true;         // reading the request line and headers
+  std::size_t headBytes = 0;  // of this request's head
+  // Raw bytes (chunk framing included) a chunked body may still take.
+  std::size_t bodyBudget = std::numeric_limits<std::size_t>::max();
+  bool bodyOverflow = false;  // a chunked body went past the budget
+  bool close = false;         // a body was left unread: no further request on it
+  std::string label;          // the route template of the request, once screened
+
+  void begin(Clock::time_point deadline) {
+    headDeadline = deadline;
+    inHead = true;
+    headBytes = 0;
+    bodyBudget = std::numeric_limits<std::size_t>::max();
+    bodyOverflow = false;
+    label.clear();
+  }
+};
+
+thread_local Connection* tlsConnection = nullptr;
+
+// Waits for `events` on `sock` up to `timeout`; false on timeout or error.
+bool waitSocket(int sock, short events, milliseconds timeout) {
+  const Clock::time_point until = Clock::now() + timeout;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<milliseconds>(until - Clock::now()).count();
+    pollfd p{sock, events, 0};
+    const int r = poll(&p, 1, static_cast<int>(std::max<long long>(0, left)));
+    if (r > 0) return true;
+    if (r == 0 || errno != EINTR) return false;
+  }
+}
+
+void socketAddress(int sock, bool peer, std::string& ip, int& port) {
+  sockaddr_storage addr{};
+  socklen_t len = sizeof addr;
+  const int r = peer ? getpeername(sock, reinterpret_cast<sockaddr*>(&addr), &len)
+                     : getsockname(sock, reinterpret_cast<sockaddr*>(&addr), &len);
+  if (r != 0) return;
+  char host[NI_MAXHOST];
+  char serv[NI_MAXSERV];
+  if (getnameinfo(reinterpret_cast<sockaddr*>(&addr), len, host, sizeof host, serv, sizeof serv,
+                  NI_NUMERICHOST | NI_NUMERICSERV) == 0) {
+    ip = host;
+    port = std::atoi(serv);
+  }
+}
+
+// The connection's byte stream for cpp-httplib, in place of its SocketStream: the
+// head of a request must arrive by a deadline and within a size (the library
+// resets its read timeout per read and buffers a line of any length), and a
+// chunked body within a budget.
+class GuardedStream final : public httplib::Stream {
+ public:
+  GuardedStream(int sock, Connection& conn, milliseconds readTimeout, milliseconds writeTimeout,
+                std::size_t maxHeadBytes)
+      : sock_(sock),
+        conn_(conn),
+        readTimeout_(readTimeout),
+        writeTimeout_(writeTimeout),
+        maxHeadBytes_(maxHeadBytes) {}
+
+  bool buffered() const { return used_ < filled_; }
+
+  bool is_readable() const override {
+    return buffered() || waitSocket(sock_, POLLIN, readTimeoutNow());
+  }
+  bool is_writable() const override { return waitSocket(sock_, POLLOUT, writeTimeout_); }
+
+  ssize_t read(char* ptr, std::size_t size) override {
+    if (size == 0) return 0;
+    if (conn_.inHead) {
+      if (conn_.headBytes >= maxHeadBytes_) return -1;
+      size = std::min(size, maxHeadBytes_ - conn_.headBytes);
+    } else if (conn_.bodyBudget != std::numeric_limits<std::size_t>::max()) {
+      if (conn_.bodyBudget == 0) {
+        conn_.bodyOverflow = true;
+        conn_.close = true;
+        return -1;
+      }
+      size = std::min(size, conn_.bodyBudget);
+    }
+    if (!buffered()) {
+      if (!waitSocket(sock_, POLLIN, readTimeoutNow())) return -1;
+      ssize_t n;
+      do {
+        n = recv(sock_, buf_, sizeof buf_, 0);
+      } while (n < 0 && errno == EINTR);
+      if (n <= 0) return n;
+      used_ = 0;
+      filled_ = static_cast<std::size_t>(n);
+    }
+    const std::size_t n = std::min(size, filled_ - used_);
+    std::memcpy(ptr, buf_ + used_, n);
+    used_ += n;
+    if (conn_.inHead) {
+      conn_.headBytes += n;
+    } else if (conn_.bodyBudget != std::numeric_limits<std::size_t>::max()) {
+      conn_.bodyBudget -= n;
+    }
+    return static_cast<ssize_t>(n);
+  }
+
+  ssize_t write(const char* ptr, std::size_t size) override {
+    if (!waitSocket(sock_, POLLOUT, writeTimeout_)) return -1;
+    ssize_t n;
+    do {
+      n = send(sock_, ptr, size, MSG_NOSIGNAL);
+    } while (n < 0 && errno == EINTR);
+    return n;
+  }
+
+  void get_remote_ip_and_port(std::string& ip, int& port) const override {
+    socketAddress(sock_, true, ip, port);
+  }
+  void get_local_ip_and_port(std::string& ip, int& port) const override {
+    socketAddress(sock_, false, ip, port);
+  }
+  socket_t socket() const override { return sock_; }
+
+ private:
+  milliseconds readTimeoutNow() const {
+    if (!conn_.inHead) return readTimeout_;
+    const auto left = std::chrono::duration_cast<milliseconds>(conn_.headDeadline - Clock::now());
+    return std::max(milliseconds(0), std::min(readTimeout_, left));
+  }
+
+  int sock_;
+  Connection& conn_;
+  milliseconds readTimeout_;
+  milliseconds writeTimeout_;
+  std::size_t maxHeadBytes_;
+  char buf_[16384];
+  std::size_t used_ = 0;
+  std::size_t filled_ = 0;
+};
+
+// cpp-httplib's server with its per-connection loop replaced (the loop is a
+// virtual member; request parsing, routing and replies stay the library's): the
+// stream above, and a connection whose request was refused before its body was
+// read is closed after the reply instead of parsing the body as the next request.
+class GuardedServer final : public httplib::Server {
+ public:
+  GuardedServer(milliseconds headTimeout, std::size_t maxHeadBytes, std::size_t drainBytes)
+      : headTimeout_(headTimeout), maxHeadBytes_(maxHeadBytes), drainBytes_(drainBytes) {}
+
+ private:
+  bool process_and_close_socket(socket_t sock) override {
+    Connection conn;
+    tlsConnection = &conn;
+    GuardedStream strm(
+        sock, conn, milliseconds(read_timeout_sec_ * 1000 + read_timeout_usec_ / 1000),
+        milliseconds(write_timeout_sec_ * 1000 + write_timeout_usec_ / 1000), maxHeadBytes_);
+    bool ret = false;
+    for (std::size_t left = keep_alive_max_count_; left > 0; --left) {
+      if (!waitForRequest(sock, strm)) break;
+      conn.begin(Clock::now() + headTimeout_);
+      bool closed = false;
+      ret = process_request(strm, left == 1, closed, nullptr);
+      // A request that never reached the screen failed in its head (malformed, too
+      // long, too slow): what follows on the connection cannot be trusted.
+      if (!ret || closed || conn.close || conn.inHead) break;
+    }
+    tlsConnection = nullptr;
+    if (conn.close) drain(sock);
+    shutdown(sock, SHUT_RDWR);
+    ::close(sock);
+    return ret;
+  }
+
+  // Idle keep-alive: a request's first byte, the keep-alive timeout, or stop().
+  bool waitForRequest(int sock, const GuardedStream& strm) const {
+    if (strm.buffered()) return true;
+    const Clock::time_point until = Clock::now() + std::chrono::seconds(keep_alive_timeout_sec_);
+    while (svr_sock_ != INVALID_SOCKET) {
+      pollfd p{sock, POLLIN, 0};
+      const int r = poll(&p, 1, 50);
+      if (r > 0) return true;
+      if (r < 0 && errno != EINTR) return false;
+      if (Clock::now() > until) return false;
+    }
+    return false;
+  }
+
+  // The reply is out; what the client still sends of the refused body is read and
+  // dropped for a moment (closing with unread data would reset the connection, and
+  // the client could lose the reply), then the connection is closed.
+  void drain(int sock) const {
+    shutdown(sock, SHUT_WR);
+    const Clock::time_point until = Clock::now() + std::chrono::seconds(2);
+    std::size_t total = 0;
+    char buf[16384];
+    while (total < drainBytes_) {
+      const auto left = std::chrono::duration_cast<milliseconds>(until - Clock::now());
+      if (left.count() <= 0 || !waitSocket(sock, POLLIN, left)) return;
+      const ssize_t n = recv(sock, buf, sizeof buf, 0);
+      if (n <= 0) return;
+      total += static_cast<std::size_t>(n);
+    }
+  }
+
+  milliseconds headTimeout_;
+  std::size_t maxHeadBytes_;
+  std::size_t drainBytes_;
+};
+
+bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) !=
+        std::tolower(static_cast<unsigned char>(b[i])))
+      return false;
+  }
+  return true;
+}
+
+std::vector<std::string> splitPath(const std::string& path) {
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i <= path.size()) {
+    const std::size_t slash = std::min(path.find('/', i), path.size());
+    out.push_back(path.substr(i, slash - i));
+    i = slash + 1;
+  }
+  return out;
+}
+
+// Whether `path` matches a template's segments (as pathPattern's regex would).
+bool segmentsMatch(const std::vector<std::string>& templ, const std::string& path) {
+  std::size_t i = 0;
+  for (const std::string& t : templ) {
+    if (i > path.size()) return false;
+    const std::size_t slash = std::min(path.find('/', i), path.size());
+    const std::string_view seg(path.data() + i, slash - i);
+    if (!t.empty() && t.front() == '{' && t.back() == '}') {
+      if (seg.empty()) return false;
+    } else if (seg != t) {
+      return false;
+    }
+    i = slash + 1;
+  }
+  return i == path.size() + 1;
+}
+
+// A Content-Length value: digits only (no sign, no spaces), at most 18 of them.
+std::optional<std::uint64_t> contentLength(const std::string& text) {
+  if (text.empty() || text.size() > 18) return std::nullopt;
+  std::uint64_t v = 0;
+  for (char c : text) {
+    if (c < '0' || c > '9') return std::nullopt;
+    v = v * 10 + static_cast<std::uint64_t>(c - '0');
+  }
+  return v;
+}
 
 std::string regexEscape(const std::string& text) {
   std::string out;
@@ -50,15 +319,26 @@ HttpService::HttpService(HttpSettings settings, JsonLog& log, Metrics& metrics)
       log_(log),
       metrics_(metrics),
       auth_(settings_.tokens),
-      server_(std::make_unique<httplib::Server>()) {
+      server_(std::make_unique<GuardedServer>(settings_.head_timeout, settings_.max_head_bytes,
+                                              settings_.max_body_bytes)) {
   const int threads = settings_.threads;
   server_->new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
   server_->set_tcp_nodelay(true);  // else Nagle adds tens of ms to keep-alive replies
+  // SO_REUSEADDR only: the library's default adds SO_REUSEPORT, with which a second
+  // service binds the same port and the kernel splits the clients between the two.
+  server_->set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   server_->set_payload_max_length(settings_.max_body_bytes);
   server_->set_read_timeout(10, 0);
   server_->set_write_timeout(10, 0);
   server_->set_keep_alive_timeout(5);
   server_->set_keep_alive_max_count(1000);
+  server_->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    return screen(req, res) ? httplib::Server::HandlerResponse::Handled
+                            : httplib::Server::HandlerResponse::Unhandled;
+  });
   server_->set_error_handler(httplib::Server::HandlerWithResponse(
       [this](const httplib::Request& req, httplib::Response& res) {
         // Called for every reply >= 400; route handlers have filled theirs already.
@@ -81,6 +361,11 @@ void HttpService::route(Route route, Handler handler) {
     const Clock::time_point started = Clock::now();
     try {
       if (needsAuth) auth_.check(req);
+      if (req.body.size() > settings_.max_body_bytes) {  // a chunked body's framing slack
+        throw HttpError(413, "body_too_large",
+                        "the body is larger than the limit of " +
+                            std::to_string(settings_.max_body_bytes) + " bytes");
+      }
       handler(req, res);
     } catch (const HttpError& e) {
       if (e.status() == 401) res.set_header("WWW-Authenticate", "Bearer");
@@ -105,7 +390,8 @@ void HttpService::route(Route route, Handler handler) {
   } else {
     throw std::invalid_argument("unsupported method " + m);
   }
-  routes_.push_back({std::move(route), std::regex(pattern)});
+  std::vector<std::string> segments = splitPath(route.path);
+  routes_.push_back({std::move(route), std::regex(pattern), std::move(segments)});
 }
 
 void HttpService::addSchema(const std::string& name, nlohmann::json schema) {
@@ -134,13 +420,113 @@ void HttpService::handleUnrouted(const httplib::Request& req, httplib::Response&
     code = "body_too_large";
     message = "the body is larger than the limit of " + std::to_string(settings_.max_body_bytes) +
               " bytes";
+  } else if (res.status == 400 && tlsConnection != nullptr && tlsConnection->bodyOverflow) {
+    res.status = 413;  // the chunked body ran past its budget
+    res.set_header("Connection", "close");
+    code = "body_too_large";
+    message = "the body is larger than the limit of " + std::to_string(settings_.max_body_bytes) +
+              " bytes";
   } else if (res.status == 400) {
     code = "bad_request";
     message = "the HTTP request is malformed";
   }
   const int status = res.status;
   sendError(res, HttpError(status, code, message));
-  record("(unrouted)", req, res, 0.0);
+  const bool screened = tlsConnection != nullptr && !tlsConnection->label.empty();
+  record(screened ? tlsConnection->label : "(unrouted)", req, res, 0.0);
+}
+
+bool HttpService::screen(const httplib::Request& req, httplib::Response& res) {
+  const Clock::time_point started = Clock::now();
+  Connection* conn = tlsConnection;
+  if (conn != nullptr) conn->inHead = false;
+  const Registered* match = nullptr;
+  std::string allowed;
+  for (const Registered& r : routes_) {
+    if (!segmentsMatch(r.segments, req.path)) continue;
+    allowed += (allowed.empty() ? "" : ", ") + r.route.method;
+    if (r.route.method == req.method || (req.method == "HEAD" && r.route.method == "GET"))
+      match = &r;
+  }
+  const std::string label = match != nullptr ? match->route.path : "(unrouted)";
+  if (conn != nullptr) conn->label = label;
+
+  // What framing the body has. cpp-httplib reads a body for these methods only.
+  const bool bodyMethod = req.method == "POST" || req.method == "PUT" || req.method == "PATCH" ||
+                          req.method == "DELETE";
+  const bool hasTransfer = req.has_header("Transfer-Encoding");
+  const bool chunked = hasTransfer && iequals(req.get_header_value("Transfer-Encoding"), "chunked");
+  const std::size_t lengths = req.get_header_value_count("Content-Length");
+  std::optional<std::uint64_t> length;
+  bool badLength = false;
+  for (std::size_t i = 0; i < lengths; ++i) {
+    const auto v = contentLength(req.get_header_value("Content-Length", i));
+    badLength |= !v || (length && *length != *v);
+    length = v;
+  }
+  const bool pending = hasTransfer || (length && *length > 0) || badLength;
+
+  auto refuse = [&](const HttpError& e) {
+    if (pending && conn != nullptr) {
+      conn->close = true;  // its body stays unread: this connection ends with the reply
+      res.set_header("Connection", "close");
+    }
+    if (e.status() == 401) res.set_header("WWW-Authenticate", "Bearer");
+    if (e.status() == 405) res.set_header("Allow", allowed);
+    sendError(res, e);
+    record(label, req, res, std::chrono::duration<double>(Clock::now() - started).count());
+    return true;
+  };
+
+  if (badLength) {
+    return refuse(HttpError(400, "bad_request", "Content-Length must be one non-negative integer"));
+  }
+  if (hasTransfer && (!chunked || lengths > 0)) {
+    return refuse(HttpError(400, "bad_request",
+                            "Transfer-Encoding must be chunked, without a Content-Length"));
+  }
+  if (match == nullptr && allowed.empty()) {
+    return refuse(HttpError(404, "not_found", "no route " + req.method + " " + req.path));
+  }
+  if (match == nullptr) {
+    return refuse(HttpError(405, "method_not_allowed", req.path + " takes " + allowed));
+  }
+  if (match->route.auth) {
+    try {
+      auth_.check(req);
+    } catch (const HttpError& e) {
+      return refuse(e);
+    }
+  }
+  if (req.has_header("Content-Encoding") &&
+      !iequals(req.get_header_value("Content-Encoding"), "identity")) {
+    return refuse(HttpError(415, "unsupported_media_type",
+                            "compressed bodies (Content-Encoding) are not accepted"));
+  }
+  if (length && *length > settings_.max_body_bytes) {
+    return refuse(HttpError(413, "body_too_large",
+                            "the body is larger than the limit of " +
+                                std::to_string(settings_.max_body_bytes) + " bytes"));
+  }
+  if (!bodyMethod) {
+    // cpp-httplib reads no body here; one that came along cannot be skipped.
+    if (pending && conn != nullptr) conn->close = true;
+    return false;
+  }
+  if (req.method == "DELETE" && hasTransfer && lengths == 0 && conn != nullptr) {
+    conn->close = true;  // cpp-httplib reads a DELETE body by Content-Length only
+  }
+  if (chunked && conn != nullptr) {
+    // Chunk framing on top of the body: a little slack; the route wrapper checks the
+    // decoded size against the limit itself.
+    conn->bodyBudget = settings_.max_body_bytes + settings_.max_body_bytes / 16 + 65536;
+  }
+  if (!hasTransfer && lengths == 0 && req.method != "DELETE") {
+    // No framing means no body (RFC 9112 6.3); cpp-httplib would read to the end of
+    // the connection. The request object is the library's own, not a const one.
+    const_cast<httplib::Request&>(req).set_header("Content-Length", "0");
+  }
+  return false;
 }
 
 void HttpService::record(const std::string& label, const httplib::Request& req,
@@ -158,14 +544,19 @@ void HttpService::record(const std::string& label, const httplib::Request& req,
 
 void HttpService::start() {
   if (thread_.joinable()) return;
+  errno = 0;
   if (settings_.port == 0) {
     port_ = server_->bind_to_any_port(settings_.bind);
   } else {
     port_ = server_->bind_to_port(settings_.bind, settings_.port) ? settings_.port : -1;
   }
   if (port_ <= 0) {
-    throw std::runtime_error("cannot listen on " + settings_.bind + ":" +
-                             std::to_string(settings_.port));
+    const int error = errno;  // the failed bind's, when the library left it
+    throw std::runtime_error(
+        "cannot listen on " + settings_.bind + ":" + std::to_string(settings_.port) + ": " +
+        (error == EADDRINUSE ? std::string("the address is in use (another service on it?)")
+         : error != 0        ? std::string(std::strerror(error))
+                             : std::string("the address is unusable")));
   }
   thread_ = std::thread([this] { server_->listen_after_bind(); });
   while (!server_->is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(1));

@@ -5,6 +5,7 @@
 // and the OpenAPI document is assembled from the registrations. Route files
 // (routes_jobs.cpp, routes_machines.cpp, routes_ops.cpp, ...) add their routes
 // before start(). docs/daemon.md says how to add more.
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <regex>
@@ -34,6 +35,11 @@ struct HttpSettings {
   std::vector<std::string> tokens;
   int threads = 16;
   std::size_t max_body_bytes = 16u << 20;
+  // The request line and headers must arrive within this, in all (a client sending
+  // one header line every few seconds holds a connection thread no longer), and be
+  // at most `max_head_bytes` long.
+  std::chrono::milliseconds head_timeout{10000};
+  std::size_t max_head_bytes = 64u << 10;
 };
 
 struct Route {
@@ -71,6 +77,10 @@ class HttpService {
 
  private:
   void handleUnrouted(const httplib::Request& req, httplib::Response& res);
+  // Pre-routing, after the headers and before any body is read: framing
+  // (Content-Length, Transfer-Encoding, Content-Encoding), 404/405, the bearer
+  // check and the body limit. True when it replied (the body is then never read).
+  bool screen(const httplib::Request& req, httplib::Response& res);
   void record(const std::string& label, const httplib::Request& req, const httplib::Response& res,
               double seconds);
 
@@ -84,6 +94,7 @@ class HttpService {
   struct Registered {
     Route route;
     std::regex pattern;
+    std::vector<std::string> segments;  // of the template; "{...}" matches any one
   };
   std::vector<Registered> routes_;
   nlohmann::json schemas_ = nlohmann::json::object();

@@ -25,7 +25,8 @@ CREATE TABLE IF NOT EXISTS jobs (
   attempts INTEGER NOT NULL DEFAULT 0,
   interrupted INTEGER NOT NULL DEFAULT 0,
   report TEXT,
-  mesh INTEGER NOT NULL DEFAULT 0
+  mesh INTEGER NOT NULL DEFAULT 0,
+  mesh_error TEXT NOT NULL DEFAULT ''
 );
 CREATE INDEX IF NOT EXISTS jobs_status ON jobs(status);
 CREATE TABLE IF NOT EXISTS machines (
@@ -38,7 +39,7 @@ CREATE TABLE IF NOT EXISTS flags (key TEXT PRIMARY KEY);
 
 constexpr const char* kJobColumns =
     "seq, id, status, machine_name, created_at, started_at, finished_at, attempts, report, mesh, "
-    "interrupted";
+    "interrupted, mesh_error";
 
 JobRecord readJob(const Statement& s) {
   JobRecord r;
@@ -53,12 +54,25 @@ JobRecord readJob(const Statement& s) {
   r.report = s.optionalText(8);
   r.mesh = s.integer(9) != 0;
   r.interrupted = static_cast<int>(s.integer(10));
+  r.mesh_error = s.text(11);
   return r;
 }
 
 std::filesystem::path prepareDir(const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir / "meshes");
   return dir;
+}
+
+// Meshes half written when a process died (their jobs run again and write anew).
+void removePartialMeshes(const std::filesystem::path& meshes) {
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(meshes, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() > 8 && name.compare(name.size() - 8, 8, ".partial") == 0) {
+      std::error_code ignored;
+      std::filesystem::remove(entry.path(), ignored);
+    }
+  }
 }
 
 }  // namespace
@@ -69,6 +83,15 @@ JobStore::JobStore(const std::filesystem::path& dir)
   // FULL: a commit (the 202 of an accepted job) survives power loss, not only a crash.
   db_.exec("PRAGMA synchronous=FULL");
   db_.exec(kSchema);
+  // Stores made before mesh_error existed.
+  bool hasMeshError = true;
+  {
+    Statement column(db_,
+                     "SELECT COUNT(*) FROM pragma_table_info('jobs') WHERE name = 'mesh_error'");
+    hasMeshError = column.step() && column.integer(0) > 0;
+  }
+  if (!hasMeshError) db_.exec("ALTER TABLE jobs ADD COLUMN mesh_error TEXT NOT NULL DEFAULT ''");
+  removePartialMeshes(dir_ / "meshes");  // the folder lock is ours: no writer is left
 }
 
 JobStore::FolderLock::FolderLock(const std::filesystem::path& dir) {
@@ -100,7 +123,7 @@ std::optional<JobRecord> JobStore::job(const std::string& id, bool withJobText) 
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   JobRecord r = readJob(s);
-  if (withJobText) r.job = s.text(11);
+  if (withJobText) r.job = s.text(12);
   return r;
 }
 
@@ -123,17 +146,19 @@ void JobStore::markRunning(const std::string& id) {
 }
 
 void JobStore::finishJob(const std::string& id, const std::string& status,
-                         const std::optional<std::string>& report, bool mesh) {
+                         const std::optional<std::string>& report, bool mesh,
+                         const std::string& meshError) {
   const std::lock_guard<std::mutex> lock(mutex_);
   Statement s(db_,
-              "UPDATE jobs SET status = ?, finished_at = ?, report = ?, mesh = ? WHERE id = ?");
+              "UPDATE jobs SET status = ?, finished_at = ?, report = ?, mesh = ?, mesh_error = ? "
+              "WHERE id = ?");
   s.bind(1, status).bind(2, utcTimestamp());
   if (report) {
     s.bind(3, *report);
   } else {
     s.bindNull(3);
   }
-  s.bind(4, static_cast<std::int64_t>(mesh ? 1 : 0)).bind(5, id).run();
+  s.bind(4, static_cast<std::int64_t>(mesh ? 1 : 0)).bind(5, meshError).bind(6, id).run();
 }
 
 void JobStore::requeue(const std::string& id) {

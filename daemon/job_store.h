@@ -27,6 +27,9 @@ struct JobRecord {
   int interrupted = 0;                // times the process died while it ran
   std::optional<std::string> report;  // JSON text, when done or failed
   bool mesh = false;
+  // Why a done job has no mesh: {"code": "mesh_too_large"|"mesh_write_failed",
+  // "message": ...} as JSON text, or "".
+  std::string mesh_error;
   std::string job;  // the job JSON text (machine inlined), when asked for
 };
 
@@ -50,9 +53,11 @@ class JobStore {
   // Newest first; `beforeSeq` > 0 continues a page.
   std::vector<JobRecord> jobs(int limit, std::int64_t beforeSeq);
   void markRunning(const std::string& id);
-  // Final status (done, failed, cancelled) with the report text if any.
+  // Final status (done, failed, cancelled) with the report text if any, and why
+  // there is no mesh (JobRecord::mesh_error).
   void finishJob(const std::string& id, const std::string& status,
-                 const std::optional<std::string>& report, bool mesh);
+                 const std::optional<std::string>& report, bool mesh,
+                 const std::string& meshError = "");
   // Back to queued (shutdown or restart): started_at cleared, attempts kept.
   void requeue(const std::string& id);
   // Removes a job and its mesh; false when there was none.

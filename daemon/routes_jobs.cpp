@@ -39,6 +39,7 @@ nlohmann::json summary(const JobRecord& r, const WorkerPool& pool) {
   if (!r.started_at.empty()) j["started_at"] = r.started_at;
   if (!r.finished_at.empty()) j["finished_at"] = r.finished_at;
   if (r.mesh) j["mesh"] = std::string(kJobs) + "/" + r.id + "/mesh";
+  if (!r.mesh_error.empty()) j["mesh_error"] = nlohmann::json::parse(r.mesh_error, nullptr, false);
   return j;
 }
 
@@ -98,6 +99,14 @@ void deleteJob(const httplib::Request& req, httplib::Response& res, JobStore& st
 
 void sendMesh(const httplib::Request& req, httplib::Response& res, JobStore& store) {
   const JobRecord r = findJob(store, req);
+  if (!r.mesh && !r.mesh_error.empty()) {
+    // Done, but the mesh was not written: over --max-mesh-mb, or the write failed.
+    const nlohmann::json why = nlohmann::json::parse(r.mesh_error, nullptr, false);
+    const bool known = why.is_object() && why.contains("code") && why.contains("message");
+    throw HttpError(409, known ? why["code"].get<std::string>() : "no_mesh",
+                    known ? why["message"].get<std::string>() : "the job's mesh was not written",
+                    {{"status", r.status}});
+  }
   if (!r.mesh) {
     throw HttpError(409, "no_mesh",
                     r.status == "done" ? "the job's mesh could not be written"
@@ -138,6 +147,14 @@ nlohmann::json jobStatusSchema() {
              {{"type", "integer"},
               {"description", "Times the service died while it ran (it then runs again)."}}},
             {"mesh", {{"type", "string"}, {"description", "Where the final stock is."}}},
+            {"mesh_error",
+             {{"type", "object"},
+              {"description",
+               "Why a done job has no mesh: `mesh_too_large` (over the service's "
+               "max_mesh_mb) or `mesh_write_failed` (e.g. disk full)."},
+              {"properties",
+               {{"code", {{"enum", {"mesh_too_large", "mesh_write_failed"}}}},
+                {"message", {{"type", "string"}}}}}}},
             {"report", schemaRef("Report")}}}};
 }
 
@@ -227,7 +244,8 @@ void addJobRoutes(HttpService& http, JobStore& store, WorkerPool& pool,
             {"content",
              {{"model/stl", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}}},
           {"404", notFound},
-          {"409", errorResponse("No mesh (yet): not done, or it failed.")}}}}},
+          {"409", errorResponse("No mesh: not done, failed, or not written (`mesh_too_large`, "
+                                "`mesh_write_failed`).")}}}}},
       [&](const httplib::Request& req, httplib::Response& res) { sendMesh(req, res, store); });
   http.route({"DELETE",
               std::string(kJobs) + "/{id}",

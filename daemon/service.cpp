@@ -24,7 +24,8 @@ HttpSettings httpSettings(const ServiceConfig& c) {
 }
 
 WorkerSettings workerSettings(const ServiceConfig& c) {
-  return {effectiveWorkers(c), c.queue_limit, c.max_job_seconds, c.max_interruptions};
+  return {effectiveWorkers(c), c.queue_limit, c.max_job_seconds, c.max_interruptions,
+          c.max_mesh_mb << 20};
 }
 
 void addContractSchemas(HttpService& http) {

@@ -142,6 +142,13 @@ const Setting kSettings[] = {
      [](ServiceConfig& c, const json& j, const std::string& w) {
        c.max_job_seconds = jsonSeconds(j, w);
      }},
+    {"max_mesh_mb", "MDHD_MAX_MESH_MB", "--max-mesh-mb",
+     [](ServiceConfig& c, const std::string& t, const std::string& w) {
+       c.max_mesh_mb = static_cast<std::uint64_t>(parseInteger(t, w, 1, 1 << 20));
+     },
+     [](ServiceConfig& c, const json& j, const std::string& w) {
+       c.max_mesh_mb = static_cast<std::uint64_t>(jsonInteger(j, w, 1, 1 << 20));
+     }},
     {"shutdown_grace_seconds", "MDHD_SHUTDOWN_GRACE_SECONDS", "--shutdown-grace-seconds",
      [](ServiceConfig& c, const std::string& t, const std::string& w) {
        c.shutdown_grace_seconds = t == "0" ? 0.0 : parseSeconds(t, w);

@@ -22,6 +22,7 @@ struct ServiceConfig {
   std::size_t max_body_bytes = 16u << 20;
   std::size_t max_program_bytes = 8u << 20;
   double max_job_seconds = 3600.0;       // a job running longer fails
+  std::uint64_t max_mesh_mb = 512;       // a larger final stock STL is not written
   double shutdown_grace_seconds = 10.0;  // on SIGTERM: running jobs may finish this long
   int max_interruptions = 3;     // a job the process died under this often fails, not reruns
   std::string log_file;          // empty: stderr

@@ -123,7 +123,7 @@ std::string errorReportText(const std::string& message, const std::string& field
 }
 
 JobOutcome runServiceJob(const std::string& jobJson, const std::filesystem::path& meshPath,
-                         cli::CheckControls controls) {
+                         cli::CheckControls controls, std::uint64_t maxMeshBytes) {
   const Clock::time_point started = Clock::now();
   cli::LoadedJob loaded;  // no base_dir: a stored job reaches no file (o-word calls included)
   try {
@@ -134,8 +134,15 @@ JobOutcome runServiceJob(const std::string& jobJson, const std::filesystem::path
   const double loadMs = std::chrono::duration<double, std::milli>(Clock::now() - started).count();
   JobOutcome out;
   controls.finished = [&](const mdh::Stock& stock) {
-    out.mesh_error = cli::writeStockStl(stock, meshPath, controls.threads);
-    out.mesh = out.mesh_error.empty();
+    const cli::StlOutcome written =
+        cli::writeStockStl(stock, meshPath, controls.threads, {controls.cancel, maxMeshBytes});
+    out.mesh_error = written.error;
+    out.mesh = written.failure == cli::StlOutcome::Failure::kNone;
+    if (!out.mesh) {
+      out.mesh_error_code = written.failure == cli::StlOutcome::Failure::kTooLarge
+                                ? "mesh_too_large"
+                                : "mesh_write_failed";
+    }
   };
   check::Report report = cli::runCheckJob(loaded, controls);
   report.timing.load_ms = loadMs;

@@ -39,13 +39,16 @@ struct JobOutcome {
   std::string report;  // the report JSON text
   bool mesh = false;   // the final stock was written
   std::string mesh_error;
+  std::string mesh_error_code;  // mesh_too_large or mesh_write_failed, with mesh_error
   std::int64_t moves = 0;
 };
 
-// Runs a stored job; the final stock goes to `meshPath`. Throws check::Cancelled
-// when controls.cancel is raised.
+// Runs a stored job; the final stock goes to `meshPath`, unless its STL would be
+// larger than `maxMeshBytes` (0: no limit): the job is then done without a mesh
+// (mesh_error_code mesh_too_large). Throws check::Cancelled when controls.cancel is
+// raised, while meshing too.
 JobOutcome runServiceJob(const std::string& jobJson, const std::filesystem::path& meshPath,
-                         cli::CheckControls controls);
+                         cli::CheckControls controls, std::uint64_t maxMeshBytes = 0);
 
 // A report document (status error) for a job that never produced one.
 std::string errorReportText(const std::string& message, const std::string& field);

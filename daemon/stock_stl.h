@@ -3,6 +3,8 @@
 // temporary beside the target, flushed to disk, then renamed over it. `mdhd check
 // --mesh` and the service write the same bytes for the same job, on any number of
 // meshing threads.
+#include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -13,5 +15,24 @@ namespace mdhd::cli {
 // "" on success, else what went wrong (nothing is left under `path` then).
 std::string writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path,
                           int threads = 1);
+
+// What the service bounds a mesh by. The flag and the size are looked at every
+// 1024 triangles, so a cancel stops meshing and writing within milliseconds and a
+// mesh over the cap is abandoned at the cap, not after filling the disk.
+struct StlLimits {
+  const std::atomic<bool>* cancel = nullptr;  // raised: check::Cancelled is thrown
+  std::uint64_t max_bytes = 0;                // 0: none
+};
+
+struct StlOutcome {
+  enum class Failure { kNone, kTooLarge, kWrite };
+  Failure failure = Failure::kNone;
+  std::string error;  // "" on success
+};
+
+// As above, within `limits`. A cancelled or failed write leaves nothing under
+// `path` (nor its temporary); check::Cancelled is rethrown after that.
+StlOutcome writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path, int threads,
+                         const StlLimits& limits);
 
 }  // namespace mdhd::cli

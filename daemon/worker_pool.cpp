@@ -160,10 +160,16 @@ void WorkerPool::runOne(const std::string& id, Running& run) {
   std::string outcome;
   try {
     try {
-      JobOutcome out = runServiceJob(record->job, store_.meshPath(id), controls);
-      if (!out.mesh_error.empty())
-        log_.write("job_mesh_error", {{"id", id}, {"what", out.mesh_error}});
-      store_.finishJob(id, out.status, out.report, out.mesh);
+      JobOutcome out =
+          runServiceJob(record->job, store_.meshPath(id), controls, settings_.max_mesh_bytes);
+      std::string meshError;
+      if (!out.mesh_error.empty()) {
+        log_.write("job_mesh_error",
+                   {{"id", id}, {"code", out.mesh_error_code}, {"what", out.mesh_error}});
+        meshError =
+            nlohmann::json{{"code", out.mesh_error_code}, {"message", out.mesh_error}}.dump();
+      }
+      store_.finishJob(id, out.status, out.report, out.mesh, meshError);
       outcome = out.status;
       moves = out.moves;
     } catch (const check::Cancelled&) {

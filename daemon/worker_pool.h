@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -26,7 +27,8 @@ struct WorkerSettings {
   int workers = 1;
   std::size_t queue_limit = 64;
   double max_job_seconds = 3600.0;
-  int max_interruptions = 3;  // a job the process died under this often fails
+  int max_interruptions = 3;         // a job the process died under this often fails
+  std::uint64_t max_mesh_bytes = 0;  // a larger final stock is not written (0: no limit)
 };
 
 class WorkerPool {
