@@ -85,8 +85,9 @@ ToolUse& toolUse(RunStats& stats, int tool) {
 
 // A material point is never deeper inside a part than the part's radius, so a part no
 // wider than twice the contact tolerance can bury itself without a collision (a 0.15 mm
-// cutter rapided 1 mm into stock at density 5 ran "clean"), and a cutter narrower than a
-// grid spacing can pass between the grid lines without cutting.
+// cutter rapided 1 mm into stock at density 5 ran "clean"). With the default tolerance
+// (h/2) that is also a cutter no wider than a grid spacing, which can pass between the
+// grid lines without cutting.
 std::string blindTo(const geom::Tool& tool, bool shank, double tolerance,
                     const SimulationOptions& options) {
   const auto tooThin = [&](const char* part, double diameter) {
