@@ -9,7 +9,8 @@ namespace mdhd::gcode {
 
 void failAt(const Block& block, int column, const std::string& message) {
   SourcePos pos = block.pos;
-  pos.column = column;
+  // An error of the whole block points at its first word (a block has at least one).
+  pos.column = column > 0 ? column : block.words.empty() ? 1 : block.words.front().column;
   throw GcodeError(std::move(pos), message);
 }
 
@@ -82,8 +83,14 @@ void readBlockWords(const Block& block, unsigned axis_mask, BlockWords& out) {
     const int axis = axisIndex(c);
     if (axis >= 0) {
       if (!((axis_mask >> axis) & 1u)) {
+        // LinuxCNC's words, then what the machinist needs: which axes there are.
         const char lower = static_cast<char>(c - 'A' + 'a');
-        failAt(block, w.column, std::string("Bad character '") + lower + "' used");
+        std::string axes;
+        for (int i = 0; i < kAxisCount; ++i)
+          if ((axis_mask >> i) & 1u) axes += std::string(axes.empty() ? "" : " ") + kAxisLetters[i];
+        failAt(block, w.column,
+               std::string("Bad character '") + lower + "' used: the machine has no " + c +
+                   " axis (its axes: " + (axes.empty() ? "none" : axes) + ")");
       }
       if (out.axis_column == 0) out.axis_column = w.column;
     }

@@ -9,7 +9,8 @@ namespace mdhd::gcode {
 struct SourcePos {
   std::string file;  // empty: the main program; else an external subroutine file
   int line = 0;      // 1-based physical line
-  int column = 0;    // 1-based column of the offending character or word (0: whole line)
+  int column = 0;    // 1-based column of the offending character or word
+                     // in characters (UTF-8); 0 only outside a program (configuration)
 };
 
 class GcodeError : public std::runtime_error {

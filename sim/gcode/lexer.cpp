@@ -13,6 +13,17 @@ bool isBlank(char c) {
 bool isDigit(char c) {
   return c >= '0' && c <= '9';
 }
+// How many continuation bytes follow a UTF-8 lead byte at raw[i]; 0 when they do not
+// all follow (not UTF-8: the lead is a character of its own).
+int utf8Continuations(std::string_view raw, std::size_t i) {
+  const auto u = static_cast<unsigned char>(raw[i]);
+  const int n = (u & 0xE0) == 0xC0 ? 1 : (u & 0xF0) == 0xE0 ? 2 : (u & 0xF8) == 0xF0 ? 3 : 0;
+  if (i + static_cast<std::size_t>(n) >= raw.size()) return 0;
+  for (int k = 1; k <= n; ++k)
+    if ((static_cast<unsigned char>(raw[i + k]) & 0xC0) != 0x80) return 0;
+  return n;
+}
+
 char lower(char c) {
   return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
 }
@@ -27,11 +38,20 @@ void normalizeLine(std::string_view raw, LineText& out, const LineRef& ref) {
   char* code = out.code.data();
   int* columns = out.columns.data();
   std::size_t n = 0;
-  out.end_column = static_cast<int>(raw.size()) + 1;
+  int column = 0;         // in characters: a UTF-8 sequence is one column
+  int pending = 0;        // continuation bytes left of the current UTF-8 sequence
   int comment_start = 0;  // column of the open '(' (0: not in a comment)
+  out.end_column = 0;     // 0: not cut short by ';'
   for (std::size_t i = 0; i < raw.size(); ++i) {
     const char c = raw[i];
-    const int column = static_cast<int>(i) + 1;
+    // A whole UTF-8 sequence is one column; any other byte (Latin-1) is one too.
+    const auto u = static_cast<unsigned char>(c);
+    if (pending > 0) {
+      --pending;
+    } else {
+      ++column;
+      if (u >= 0xC0) pending = utf8Continuations(raw, i);
+    }
     if (comment_start != 0) {
       if (c == '(') throw GcodeError(ref.at(column), "Nested comment found");
       if (c == ')') comment_start = 0;
@@ -47,6 +67,7 @@ void normalizeLine(std::string_view raw, LineText& out, const LineRef& ref) {
     columns[n] = column;
     ++n;
   }
+  if (out.end_column == 0) out.end_column = column + 1;
   out.code.resize(n);
   out.columns.resize(n);
   if (comment_start != 0) throw GcodeError(ref.at(comment_start), "Unclosed comment found");

@@ -14,8 +14,8 @@ namespace mdhd::gcode {
 
 struct LineText {
   std::string code;          // normalized text
-  std::vector<int> columns;  // 1-based raw column of each code character
-  int end_column = 1;        // column just after the last raw character
+  std::vector<int> columns;  // 1-based raw column (in characters) of each code character
+  int end_column = 1;        // column just after the last raw character (or at ';')
 };
 
 // Where errors of the current line are reported (no copies per line).

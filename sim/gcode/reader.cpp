@@ -64,7 +64,7 @@ bool Reader::next(Block& out) {
   while (!ended_) {
     if (!readLine(frames_.back().source)) {
       if (frames_.size() > 1) {
-        failLine(source().lineNumber(),
+        failLine(source().lineNumber(), 1,
                  "End of file inside subroutine o<" + frames_.back().name + ">: endsub missing");
       }
       ended_ = true;
@@ -75,8 +75,8 @@ bool Reader::next(Block& out) {
   return false;
 }
 
-void Reader::failLine(int line, const std::string& message) const {
-  throw GcodeError({*ref_.file, line, 0}, message);
+void Reader::failLine(int line, int column, const std::string& message) const {
+  throw GcodeError({*ref_.file, line, column}, message);
 }
 
 bool Reader::readLine(int source_index) {
@@ -93,8 +93,9 @@ bool Reader::readLine(int source_index) {
   if (options_.each_line) options_.each_line();
   ref_.line = src.lines->lineNumber();
   if (++steps_ > options_.max_steps) {
-    failLine(ref_.line, "Program exceeds the limit of " + std::to_string(options_.max_steps) +
-                            " lines read (endless loop?)");
+    failLine(ref_.line, 1,
+             "Program exceeds the limit of " + std::to_string(options_.max_steps) +
+                 " lines read (endless loop?)");
   }
   normalizeLine(raw_, text_, ref_);
   return true;

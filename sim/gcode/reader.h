@@ -84,6 +84,7 @@ class Reader {
     std::string label;
     std::uint64_t offset = 0;  // while: its own line; do/repeat: the line after
     int line = 0;              // line number of the while/do/repeat/if line
+    int column = 1;            // column of its O-word, for errors
     std::uint64_t iterations = 0;
     std::uint64_t remaining = 0;  // repeat
     bool taken = false;           // if: a branch has run
@@ -133,13 +134,21 @@ class Reader {
   void handleWhile(Cursor& c, const OWordHead& head);
   void handleLoopEnd(Cursor& c, const OWordHead& head);
   void handleBreakOrContinue(const OWordHead& head);
-  void skipIfBranches(const std::string& label, int line);
-  OKeyword skipTo(const std::string& label, std::initializer_list<OKeyword> stops, int from_line,
+  // Where an O-word block opened: its line and the column of its O-word.
+  struct Opened {
+    int line = 0;
+    int column = 1;
+  };
+  Opened openedHere(const OWordHead& head) const;
+  void skipIfBranches(const std::string& label, Opened from);
+  OKeyword skipTo(const std::string& label, std::initializer_list<OKeyword> stops, Opened from,
                   std::string_view what, bool in_definition = false);
   Control& pushControl(std::vector<Control>& controls);
   Control& topControl(ControlKind kind, const OWordHead& head, const Cursor& c);
   void countIteration(Control& control);
-  [[noreturn]] void failLine(int line, const std::string& message) const;
+  // An error of a whole line or block: `column` is where its first word (or O-word) stands.
+  [[noreturn]] void failLine(int line, int column, const std::string& message) const;
+  int firstColumn() const { return text_.columns.empty() ? 1 : text_.columns.front(); }
 
   std::deque<Source> sources_;  // deque: a Source never moves (LineRef points at its name)
   ParameterStore& params_;

@@ -77,12 +77,13 @@ void Reader::defineSub(const OWordHead& head) {
     const SubDef& old = it->second;
     // Found before by looking ahead for a call: then it is this same definition.
     if (old.source != def.source || old.body != def.body) {
-      failLine(line, "Redefining subroutine " + labelText(head.label) + ", already defined in " +
-                         fileName(old.source) + " line " + std::to_string(old.line));
+      failLine(line, openedHere(head).column,
+               "Redefining subroutine " + labelText(head.label) + ", already defined in " +
+                   fileName(old.source) + " line " + std::to_string(old.line));
     }
   }
   subs_[head.label] = def;
-  skipTo(head.label, {OKeyword::kEndSub}, line, "sub", true);
+  skipTo(head.label, {OKeyword::kEndSub}, openedHere(head), "sub", true);
 }
 
 std::string Reader::fileName(int source_index) const {
@@ -199,8 +200,9 @@ void Reader::returnFromSub(Cursor& c, const OWordHead& head) {
 // program opening blocks it never closes cannot grow memory without bound.
 Reader::Control& Reader::pushControl(std::vector<Control>& controls) {
   if (controls.size() >= kMaxOpenBlocks) {
-    failLine(ref_.line, "Too many nested O-word blocks (more than " +
-                            std::to_string(kMaxOpenBlocks) + " open if / while / do / repeat)");
+    failLine(ref_.line, firstColumn(),
+             "Too many nested O-word blocks (more than " + std::to_string(kMaxOpenBlocks) +
+                 " open if / while / do / repeat)");
   }
   return controls.emplace_back();
 }
@@ -224,10 +226,11 @@ void Reader::handleIf(Cursor& c, const OWordHead& head) {
       control.kind = ControlKind::kIf;
       control.label = head.label;
       control.line = ref_.line;
+      control.column = openedHere(head).column;
       if (condition) {
         control.taken = true;
       } else {
-        skipIfBranches(head.label, control.line);
+        skipIfBranches(head.label, {control.line, control.column});
       }
       return;
     }
@@ -235,8 +238,8 @@ void Reader::handleIf(Cursor& c, const OWordHead& head) {
     case OKeyword::kElse: {
       // Reached while running a branch: the if is done.
       if (head.keyword == OKeyword::kElse) readTrailingComments(c);
-      const int line = topControl(ControlKind::kIf, head, c).line;
-      skipTo(head.label, {OKeyword::kEndIf}, line, "if");
+      const Control open = topControl(ControlKind::kIf, head, c);  // a copy: skipTo reads on
+      skipTo(head.label, {OKeyword::kEndIf}, {open.line, open.column}, "if");
       frames_.back().controls.pop_back();
       return;
     }
@@ -251,10 +254,10 @@ void Reader::handleIf(Cursor& c, const OWordHead& head) {
 // Skips branches not taken until an elseif whose condition holds, an else,
 // or the endif (which closes the if). A loop, not recursion: a chain of
 // elseif lines can be long.
-void Reader::skipIfBranches(const std::string& label, int line) {
+void Reader::skipIfBranches(const std::string& label, Opened from) {
   for (;;) {
     const OKeyword stop =
-        skipTo(label, {OKeyword::kElseIf, OKeyword::kElse, OKeyword::kEndIf}, line, "if");
+        skipTo(label, {OKeyword::kElseIf, OKeyword::kElse, OKeyword::kEndIf}, from, "if");
     Cursor c(text_, ref_);
     startsWithOWord(c);
     const OWordHead head = readOWordHead(c, expressions_);
@@ -285,20 +288,22 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
     control.label = head.label;
     control.offset = source().tell();
     control.line = ref_.line;
+    control.column = openedHere(head).column;
     return;
   }
   if (head.keyword == OKeyword::kRepeat) {
     const double count = std::nearbyint(readCondition(c, head));  // LinuxCNC rounds the count
-    const int line = ref_.line;
+    const Opened here = openedHere(head);
     if (!(count >= 1.0)) {
-      skipTo(head.label, {OKeyword::kEndRepeat}, line, "repeat");
+      skipTo(head.label, {OKeyword::kEndRepeat}, here, "repeat");
       return;
     }
     Control& control = pushControl(controls);
     control.kind = ControlKind::kRepeat;
     control.label = head.label;
     control.offset = source().tell();
-    control.line = line;
+    control.line = here.line;
+    control.column = here.column;
     control.remaining = count >= 1e18 ? ~std::uint64_t{0} : static_cast<std::uint64_t>(count);
     return;
   }
@@ -324,12 +329,13 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
       control.label = head.label;
       control.offset = line_start_;
       control.line = ref_.line;
+      control.column = openedHere(head).column;
     }
     return;
   }
-  const int line = ref_.line;
+  const Opened here = openedHere(head);
   if (again) controls.pop_back();
-  skipTo(head.label, {OKeyword::kEndWhile}, line, "while");
+  skipTo(head.label, {OKeyword::kEndWhile}, here, "while");
 }
 
 void Reader::handleLoopEnd(Cursor& c, const OWordHead& head) {
@@ -351,11 +357,15 @@ void Reader::handleLoopEnd(Cursor& c, const OWordHead& head) {
   source().setLineNumber(control.line);
 }
 
+Reader::Opened Reader::openedHere(const OWordHead& head) const {
+  return {ref_.line, head.index < text_.columns.size() ? text_.columns[head.index] : 1};
+}
+
 void Reader::countIteration(Control& control) {
   if (++control.iterations >= options_.max_loop_iterations) {
-    failLine(control.line, "Loop " + labelText(control.label) + " ran more than " +
-                               std::to_string(options_.max_loop_iterations) +
-                               " times (endless loop?)");
+    failLine(control.line, control.column,
+             "Loop " + labelText(control.label) + " ran more than " +
+                 std::to_string(options_.max_loop_iterations) + " times (endless loop?)");
   }
 }
 
@@ -369,8 +379,9 @@ void Reader::handleBreakOrContinue(const OWordHead& head) {
   std::size_t i = controls.size();
   while (i > 0 && !isLoop(controls[i - 1])) --i;
   if (i == 0) {
-    failLine(ref_.line, labelText(head.label) + " " + std::string(keywordName(head.keyword)) +
-                            ": no matching while/do label");
+    failLine(ref_.line, openedHere(head).column,
+             labelText(head.label) + " " + std::string(keywordName(head.keyword)) +
+                 ": no matching while/do label");
   }
   controls.resize(i);  // leave any if inside the loop
   const Control loop = controls.back();
@@ -379,7 +390,7 @@ void Reader::handleBreakOrContinue(const OWordHead& head) {
   const std::string_view what = is_while ? "while" : "do";
   if (head.keyword == OKeyword::kBreak) {
     controls.pop_back();
-    skipTo(head.label, {end}, loop.line, what);
+    skipTo(head.label, {end}, {loop.line, loop.column}, what);
     return;
   }
   if (is_while) {  // continue: test the condition again
@@ -389,14 +400,14 @@ void Reader::handleBreakOrContinue(const OWordHead& head) {
     return;
   }
   // continue in a do loop: go to its closing while and let the condition decide.
-  skipTo(head.label, {end}, loop.line, what);
+  skipTo(head.label, {end}, {loop.line, loop.column}, what);
   Cursor c(text_, ref_);
   startsWithOWord(c);
   handleOWord(c);
 }
 
 OKeyword Reader::skipTo(const std::string& label, std::initializer_list<OKeyword> stops,
-                        int from_line, std::string_view what, bool in_definition) {
+                        Opened from, std::string_view what, bool in_definition) {
   const int source_index = frames_.back().source;
   while (readLine(source_index)) {
     if (isClosingPercent()) break;
@@ -418,7 +429,8 @@ OKeyword Reader::skipTo(const std::string& label, std::initializer_list<OKeyword
     if (!wanted.empty()) wanted += " / ";
     wanted += std::string(keywordName(stop));
   }
-  failLine(from_line, labelText(label) + " " + std::string(what) + " has no matching " + wanted);
+  failLine(from.line, from.column,
+           labelText(label) + " " + std::string(what) + " has no matching " + wanted);
 }
 
 }  // namespace mdhd::gcode

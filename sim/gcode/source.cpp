@@ -11,7 +11,7 @@ namespace mdhd::gcode {
 namespace {
 
 [[noreturn]] void failTooLong(int line) {
-  throw GcodeError({"", line, 0},
+  throw GcodeError({"", line, kMaxLineLength + 1},
                    "Line too long (more than " + std::to_string(kMaxLineLength) + " characters)");
 }
 

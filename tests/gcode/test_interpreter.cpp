@@ -49,13 +49,15 @@ TEST(InterpreterErrors, UnknownCodesAndMissingAxes) {
   EXPECT_STREQ(r.error->what(), "Unknown m code used");
   r = run("G0 X1 W5\n");
   ASSERT_TRUE(r.error);
-  EXPECT_STREQ(r.error->what(), "Bad character 'w' used");
+  EXPECT_STREQ(r.error->what(),
+               "Bad character 'w' used: the machine has no W axis (its axes: X Y Z A B C)");
   EXPECT_EQ(r.error->column(), 7);
   InterpreterConfig xyz = baseConfig();
   xyz.axis_mask = 0x7;  // a 3-axis machine: A is not there
   r = run("G0 X1 A5\n", xyz);
   ASSERT_TRUE(r.error);
-  EXPECT_STREQ(r.error->what(), "Bad character 'a' used");
+  EXPECT_STREQ(r.error->what(),
+               "Bad character 'a' used: the machine has no A axis (its axes: X Y Z)");
   r = run("X1\n");
   ASSERT_TRUE(r.error);
   EXPECT_STREQ(r.error->what(), "Cannot use axis values without a g code that uses them");

@@ -230,6 +230,10 @@ TEST(Reader, ErrorsNameLineAndColumn) {
       {"#1 X5\n", "Equal sign missing in parameter setting", 1, 4},
       {"#<a = 5\n", "Named parameter not terminated", 1, 2},
       {"G0 X@\n", "bad number format (conversion failed) parsing ''", 1, 5},
+      // Columns count characters: UTF-8 sequences are one, so are Latin-1 bytes.
+      {"(\xc3\xa9\xe2\x82\xac) G1 X1 * 2\n", "Bad character '*' used", 1, 12},
+      {"(\xe9\xb0) G1 X1 * 2\n", "Bad character '*' used", 1, 12},
+      {"(\xb0) G1 X1 * 2\n", "Bad character '*' used", 1, 11},
   };
   for (const Case& c : cases) {
     const GcodeError e = readError(c.program);

@@ -250,19 +250,19 @@ TEST(OWord, Errors) {
   } cases[] = {
       {"G0\no<nope> call\n",
        "Unknown subroutine o<nope>: not defined in the program and no nope.ngc found", 2, 1},
-      {"o1 sub\nG0\n", "o<1> sub has no matching endsub", 1, 0},
-      {"o1 if [0]\nG0\n", "o<1> if has no matching elseif / else / endif", 1, 0},
-      {"o1 if [1]\nG0\no1 else\nX1\n", "o<1> if has no matching endif", 1, 0},
-      {"o1 while [0]\nG0\n", "o<1> while has no matching endwhile", 1, 0},
+      {"o1 sub\nG0\n", "o<1> sub has no matching endsub", 1, 1},
+      {"  o1 if [0]\nG0\n", "o<1> if has no matching elseif / else / endif", 1, 3},
+      {"N10 o1 if [1]\nG0\no1 else\nX1\n", "o<1> if has no matching endif", 1, 5},
+      {"o1 while [0]\nG0\n", "o<1> while has no matching endwhile", 1, 1},
       {"G0\no1 endif\n", "o<1> endif without matching if", 2, 1},
       {"o1 if [1]\no2 endif\n", "o<2> endif without matching if", 2, 1},
       {"o1 endwhile\n", "o<1> endwhile without matching while", 1, 1},
       {"o1 endrepeat\n", "o<1> endrepeat without matching repeat", 1, 1},
-      {"o1 break\n", "o<1> break: no matching while/do label", 1, 0},
+      {" o1 break\n", "o<1> break: no matching while/do label", 1, 2},
       {"o1 return\n", "o<1> return outside a subroutine", 1, 1},
       {"o1 endsub\n", "o<1> endsub outside a subroutine", 1, 1},
       {"o1 sub\no2 endsub\no1 endsub\no1 call\n", "o<2> endsub inside subroutine o<1>", 2, 1},
-      {"o1 sub\nG0\n o1 call\n", "o<1> sub has no matching endsub", 1, 0},
+      {"o1 sub\nG0\n o1 call\n", "o<1> sub has no matching endsub", 1, 1},
       {"o1 foo [1]\n", "Unknown command in O line", 1, 4},
       {"o1\n", "Unknown command in O line", 1, 3},
       {"o call\n", "Unknown word where unary operation could be", 1, 3},
@@ -274,7 +274,7 @@ TEST(OWord, Errors) {
       {"o1 sub\n o2 sub\n o2 endsub\no1 endsub\n",
        "Nested subroutine definition: o<2> sub inside o<1> sub", 2, 2},
       {"o1 sub\no1 endsub\no1 sub\no1 endsub\n",
-       "Redefining subroutine o<1>, already defined in the program line 1", 3, 0},
+       "Redefining subroutine o<1>, already defined in the program line 1", 3, 1},
       {"o1 sub\no1 endsub\n  o1 call [1] [2] [3] [4] [5] [6] [7] [8] [9] [10] [11] [12] [13] [14] "
        "[15] [16] [17] [18] [19] [20] [21] [22] [23] [24] [25] [26] [27] [28] [29] [30] [31]\n",
        "Too many subroutine arguments (more than 30)", 3, 152},
@@ -290,9 +290,10 @@ TEST(OWord, Errors) {
 TEST(OWord, EndlessLoopsAreStopped) {
   ReaderOptions options;
   options.max_loop_iterations = 1000;
-  const GcodeError e = readError("G0\no7 while [1]\no7 endwhile\n", options);
+  const GcodeError e = readError("G0\n  o7 while [1]\no7 endwhile\n", options);
   EXPECT_STREQ(e.what(), "Loop o<7> ran more than 1000 times (endless loop?)");
   EXPECT_EQ(e.line(), 2);
+  EXPECT_EQ(e.column(), 3);  // the O-word that opened the loop
   const GcodeError d = readError("o7 do\no7 while [1]\n", options);
   EXPECT_STREQ(d.what(), "Loop o<7> ran more than 1000 times (endless loop?)");
   const GcodeError r = readError("o7 repeat [10**300]\no7 endrepeat\n", options);
