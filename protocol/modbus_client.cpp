@@ -1,6 +1,15 @@
 #include "protocol/modbus_client.h"
 
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/eventfd.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <cerrno>
+#include <cstring>
 
 #include <modbus/modbus.h>
 
@@ -8,10 +17,13 @@ namespace mdhd::protocol {
 namespace {
 
 using Kind = ModbusError::Kind;
+using SteadyClock = std::chrono::steady_clock;
 
-Kind classify(int code) {
-  if (code >= EMBXILFUN && code <= EMBXGTAR) return Kind::kException;
-  if (code >= EMBBADCRC && code <= EMBBADSLAVE) return Kind::kMalformed;
+constexpr std::uint8_t kWriteSingleCoil = 0x05;
+constexpr std::size_t kMbapBytes = 7;  // transaction, protocol, length, unit
+constexpr int kMaxMbapLength = 254;    // unit id + a PDU of at most 253 bytes
+
+Kind classifyErrno(int code) {
   switch (code) {
     case ETIMEDOUT:
     case EAGAIN:
@@ -20,11 +32,27 @@ Kind classify(int code) {
     case EHOSTUNREACH:
     case ENETUNREACH:
     case EADDRNOTAVAIL:
-    case EINVAL:  // libmodbus: bad address or name not resolved
+    case EINVAL:
       return Kind::kConnect;
     default:
       return Kind::kConnectionLost;  // ECONNRESET, EPIPE, EBADF, ...
   }
+}
+
+std::string hex(unsigned v, int digits) {
+  static const char* kHex = "0123456789abcdef";
+  std::string s = "0x";
+  for (int i = digits - 1; i >= 0; --i) s += kHex[(v >> (4 * i)) & 0xF];
+  return s;
+}
+
+std::uint16_t be16(const std::uint8_t* p) {
+  return static_cast<std::uint16_t>((p[0] << 8) | p[1]);
+}
+
+void putBe16(std::vector<std::uint8_t>& out, unsigned v) {
+  out.push_back(static_cast<std::uint8_t>((v >> 8) & 0xFF));
+  out.push_back(static_cast<std::uint8_t>(v & 0xFF));
 }
 
 }  // namespace
@@ -45,6 +73,8 @@ const char* modbusErrorKindName(ModbusError::Kind kind) {
       return "bad_value";
     case Kind::kBackoff:
       return "backoff";
+    case Kind::kInterrupted:
+      return "interrupted";
   }
   return "?";
 }
@@ -53,30 +83,51 @@ ModbusTcpClient::ModbusTcpClient(ModbusMap map, BackoffPolicy backoff, Clock clo
     : map_(std::move(map)),
       blocks_(planReads(map_)),
       policy_(backoff),
-      clock_(clock ? std::move(clock) : Clock([] { return std::chrono::steady_clock::now(); })),
+      clock_(clock ? std::move(clock) : Clock([] { return SteadyClock::now(); })),
       next_wait_(policy_.initial) {
   for (const ReadBlock& b : blocks_) words_.emplace_back(static_cast<std::size_t>(b.count));
+  wake_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
 }
 
 ModbusTcpClient::~ModbusTcpClient() {
   disconnect();
-  if (ctx_ != nullptr) modbus_free(ctx_);
+  if (wake_fd_ >= 0) close(wake_fd_);
+}
+
+void ModbusTcpClient::interrupt() {
+  interrupted_ = true;
+  if (wake_fd_ >= 0) {
+    const std::uint64_t one = 1;
+    (void)!write(wake_fd_, &one, sizeof one);
+  }
 }
 
 std::string ModbusTcpClient::where() const {
   return "modbus " + map_.host + ":" + std::to_string(map_.port);
 }
 
-void ModbusTcpClient::disconnect() {
-  if (ctx_ != nullptr && connected_) modbus_close(ctx_);
-  connected_ = false;
+ModbusTcpClient::Deadline ModbusTcpClient::deadline() const {
+  return SteadyClock::now() + std::chrono::milliseconds(map_.timeout_ms);
 }
 
-void ModbusTcpClient::fail(int code, const std::string& what) {
-  const Kind kind = classify(code);
-  std::string message = where() + ": " + what + ": " + modbus_strerror(code);
-  // An exception reply is a whole frame: the connection is still in step.
-  if (kind != Kind::kException) {
+void ModbusTcpClient::disconnect() {
+  if (fd_ >= 0) close(fd_);
+  fd_ = -1;
+}
+
+void ModbusTcpClient::succeeded() {
+  next_wait_ = policy_.initial;
+  last_wait_ = std::chrono::milliseconds(0);
+}
+
+void ModbusTcpClient::fail(Kind kind, int code, const std::string& what,
+                           const std::string& detail) {
+  std::string message = where() + ": " + what + ": " + detail;
+  // An exception reply is a whole frame: the connection is still in step. An
+  // interrupted client is being stopped: no backoff to plan.
+  if (kind == Kind::kInterrupted) {
+    disconnect();
+  } else if (kind != Kind::kException) {
     disconnect();
     last_wait_ = next_wait_;
     next_attempt_ = clock_() + last_wait_;
@@ -86,50 +137,195 @@ void ModbusTcpClient::fail(int code, const std::string& what) {
   throw ModbusError(kind, code, message);
 }
 
-void ModbusTcpClient::ensureConnected() {
-  if (connected_) return;
+void ModbusTcpClient::waitFor(short events, const std::string& what, Deadline deadline) {
+  for (;;) {
+    if (interrupted_.load()) fail(Kind::kInterrupted, ECANCELED, what, "interrupted");
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - SteadyClock::now());
+    if (left.count() <= 0) {
+      const std::string ms = std::to_string(map_.timeout_ms) + " ms";
+      fail(Kind::kTimeout, ETIMEDOUT, what,
+           what == "connect" ? "not connected within " + ms : "no complete reply within " + ms);
+    }
+    pollfd p[2] = {{fd_, events, 0}, {wake_fd_, POLLIN, 0}};
+    const int n = poll(p, wake_fd_ >= 0 ? 2 : 1, static_cast<int>(left.count()));
+    if (n < 0 && errno != EINTR) fail(classifyErrno(errno), errno, what, std::strerror(errno));
+    if (n > 0 && p[0].revents != 0) return;  // ready, or an error the next call reports
+  }
+}
+
+void ModbusTcpClient::connectTo(Deadline deadline) {
+  const std::string what = "connect";
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const std::string port = std::to_string(map_.port);
+  if (const int rc = getaddrinfo(map_.host.c_str(), port.c_str(), &hints, &found); rc != 0) {
+    fail(Kind::kConnect, EINVAL, what, std::string("cannot resolve the host: ") + gai_strerror(rc));
+  }
+  int error = ECONNREFUSED;
+  for (addrinfo* a = found; a != nullptr; a = a->ai_next) {
+    fd_ = socket(a->ai_family, a->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, a->ai_protocol);
+    if (fd_ < 0) {
+      error = errno;
+      continue;
+    }
+    if (::connect(fd_, a->ai_addr, a->ai_addrlen) == 0) break;
+    if (errno != EINPROGRESS) {
+      error = errno;
+      disconnect();
+      continue;
+    }
+    try {
+      waitFor(POLLOUT, what, deadline);
+    } catch (...) {
+      freeaddrinfo(found);
+      throw;
+    }
+    socklen_t len = sizeof error;
+    if (getsockopt(fd_, SOL_SOCKET, SO_ERROR, &error, &len) == 0 && error == 0) break;
+    disconnect();
+  }
+  freeaddrinfo(found);
+  if (fd_ < 0) fail(classifyErrno(error), error, what, std::strerror(error));
+  const int one = 1;
+  setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+}
+
+void ModbusTcpClient::ensureConnected(Deadline deadline) {
+  if (interrupted_.load()) fail(Kind::kInterrupted, ECANCELED, "connect", "interrupted");
+  if (fd_ >= 0) return;
   const auto now = clock_();
   if (now < next_attempt_) {
     const auto left = std::chrono::ceil<std::chrono::milliseconds>(next_attempt_ - now);
     throw ModbusError(Kind::kBackoff, 0,
                       where() + ": reconnecting in " + std::to_string(left.count()) + " ms");
   }
-  if (ctx_ == nullptr) {
-    ctx_ = modbus_new_tcp_pi(map_.host.c_str(), std::to_string(map_.port).c_str());
-    if (ctx_ == nullptr) fail(errno, "cannot create a context");
-    const auto sec = static_cast<std::uint32_t>(map_.timeout_ms / 1000);
-    const auto usec = static_cast<std::uint32_t>((map_.timeout_ms % 1000) * 1000);
-    modbus_set_response_timeout(ctx_, sec, usec);
-    modbus_set_byte_timeout(ctx_, sec, usec);
-    modbus_set_slave(ctx_, map_.unit_id);
-  }
-  if (modbus_connect(ctx_) == -1) fail(errno, "connect");
-  connected_ = true;
+  connectTo(deadline);
   ++connects_;
 }
 
-void ModbusTcpClient::readInto(const ReadBlock& block, std::uint16_t* out) {
-  ensureConnected();
-  const int rc = map_.table == RegisterTable::kHolding
-                     ? modbus_read_registers(ctx_, block.start, block.count, out)
-                     : modbus_read_input_registers(ctx_, block.start, block.count, out);
-  if (rc != block.count) {
-    fail(rc == -1 ? errno : EMBBADDATA, std::string("read ") + registerTableName(map_.table) +
-                                            " registers " + std::to_string(block.start) + ".." +
-                                            std::to_string(block.start + block.count - 1));
+void ModbusTcpClient::sendAll(const Bytes& bytes, const std::string& what, Deadline deadline) {
+  std::size_t sent = 0;
+  while (sent < bytes.size()) {
+    const ssize_t n = send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+    if (n > 0) {
+      sent += static_cast<std::size_t>(n);
+    } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+      waitFor(POLLOUT, what, deadline);
+    } else if (n < 0 && errno != EINTR) {
+      fail(classifyErrno(errno), errno, what, std::strerror(errno));
+    }
   }
-  next_wait_ = policy_.initial;
-  last_wait_ = std::chrono::milliseconds(0);
+}
+
+void ModbusTcpClient::receive(std::uint8_t* out, std::size_t n, const std::string& what,
+                              Deadline deadline) {
+  std::size_t got = 0;
+  while (got < n) {
+    const ssize_t r = recv(fd_, out + got, n - got, 0);
+    if (r > 0) {
+      got += static_cast<std::size_t>(r);
+    } else if (r == 0) {
+      fail(Kind::kConnectionLost, ECONNRESET, what,
+           "the peer closed the connection" +
+               (got > 0 ? " after " + std::to_string(got) + " bytes of a reply part"
+                        : std::string()));
+    } else if (errno == EAGAIN || errno == EWOULDBLOCK) {
+      waitFor(POLLIN, what, deadline);
+    } else if (errno != EINTR) {
+      fail(classifyErrno(errno), errno, what, std::strerror(errno));
+    }
+  }
+}
+
+ModbusTcpClient::Bytes ModbusTcpClient::exchange(const Bytes& pdu, const std::string& what,
+                                                 Deadline deadline) {
+  const std::uint16_t tid = ++transaction_;
+  Bytes request;
+  request.reserve(kMbapBytes + pdu.size());
+  putBe16(request, tid);
+  putBe16(request, 0);
+  putBe16(request, static_cast<unsigned>(pdu.size() + 1));
+  request.push_back(static_cast<std::uint8_t>(map_.unit_id));
+  request.insert(request.end(), pdu.begin(), pdu.end());
+  sendAll(request, what, deadline);
+
+  std::uint8_t header[kMbapBytes];
+  receive(header, kMbapBytes, what, deadline);
+  const std::uint16_t reply_tid = be16(header);
+  const std::uint16_t protocol = be16(header + 2);
+  const std::uint16_t length = be16(header + 4);
+  const std::uint8_t unit = header[6];
+  if (protocol != 0) {
+    fail(Kind::kMalformed, EMBBADDATA, what,
+         "the reply's MBAP protocol id is " + std::to_string(protocol) + ", not 0 (Modbus)");
+  }
+  if (reply_tid != tid) {
+    fail(Kind::kMalformed, EMBBADDATA, what,
+         "the reply's transaction id is " + hex(reply_tid, 4) + ", not " + hex(tid, 4) +
+             " (another request's reply)");
+  }
+  if (length < 2 || length > kMaxMbapLength) {
+    fail(Kind::kMalformed, EMBBADDATA, what,
+         "the reply's MBAP length is " + std::to_string(length) + ", outside 2..254");
+  }
+  if (unit != map_.unit_id) {
+    fail(Kind::kMalformed, EMBBADSLAVE, what,
+         "the reply comes from unit id " + std::to_string(unit) + ", not " +
+             std::to_string(map_.unit_id));
+  }
+  Bytes reply(static_cast<std::size_t>(length - 1));
+  receive(reply.data(), reply.size(), what, deadline);
+  if (reply[0] == (pdu[0] | 0x80)) {
+    if (reply.size() != 2) {
+      fail(Kind::kMalformed, EMBBADDATA, what,
+           "an exception reply of " + std::to_string(reply.size()) + " PDU bytes, not 2");
+    }
+    const int code = reply[1];
+    const bool known =
+        code >= MODBUS_EXCEPTION_ILLEGAL_FUNCTION && code <= MODBUS_EXCEPTION_GATEWAY_TARGET;
+    fail(Kind::kException, known ? MODBUS_ENOBASE + code : 0, what,
+         known ? std::string(modbus_strerror(MODBUS_ENOBASE + code))
+               : "exception code " + std::to_string(code));
+  }
+  if (reply[0] != pdu[0]) {
+    fail(Kind::kMalformed, EMBBADDATA, what,
+         "the reply is for function " + std::to_string(reply[0]) + ", not " +
+             std::to_string(pdu[0]));
+  }
+  return reply;
+}
+
+void ModbusTcpClient::readInto(const ReadBlock& block, std::uint16_t* out, Deadline deadline) {
+  ensureConnected(deadline);
+  const std::string what = std::string("read ") + registerTableName(map_.table) + " registers " +
+                           std::to_string(block.start) + ".." +
+                           std::to_string(block.start + block.count - 1);
+  Bytes pdu = {static_cast<std::uint8_t>(map_.table == RegisterTable::kHolding ? 0x03 : 0x04)};
+  putBe16(pdu, static_cast<unsigned>(block.start));
+  putBe16(pdu, static_cast<unsigned>(block.count));
+  const Bytes reply = exchange(pdu, what, deadline);
+  const std::size_t want = 2 * static_cast<std::size_t>(block.count);
+  if (reply.size() < 2 || reply[1] != want || reply.size() != 2 + want) {
+    fail(Kind::kMalformed, EMBBADDATA, what,
+         "a reply of " + std::to_string(reply.size() < 2 ? 0 : reply[1]) + " data bytes (" +
+             std::to_string(reply.size()) + " PDU bytes) where " + std::to_string(want) +
+             " were asked");
+  }
+  for (int i = 0; i < block.count; ++i) out[i] = be16(reply.data() + 2 + 2 * i);
+  succeeded();
 }
 
 std::vector<std::uint16_t> ModbusTcpClient::readBlock(const ReadBlock& block) {
   std::vector<std::uint16_t> words(static_cast<std::size_t>(block.count));
-  readInto(block, words.data());
+  readInto(block, words.data(), deadline());
   return words;
 }
 
 ModbusSample ModbusTcpClient::read() {
-  for (std::size_t i = 0; i < blocks_.size(); ++i) readInto(blocks_[i], words_[i].data());
+  const Deadline until = deadline();  // one deadline for the whole poll
+  for (std::size_t i = 0; i < blocks_.size(); ++i) readInto(blocks_[i], words_[i].data(), until);
   try {
     return decodeSample(map_, blocks_, words_);
   } catch (const RegisterValueError& e) {
@@ -138,12 +334,23 @@ ModbusSample ModbusTcpClient::read() {
 }
 
 void ModbusTcpClient::writeFeedHold(bool hold) {
-  ensureConnected();
-  if (modbus_write_bit(ctx_, map_.feed_hold.coil, hold ? 1 : 0) != 1) {
-    fail(errno, "write coil " + std::to_string(map_.feed_hold.coil));
+  const Deadline until = deadline();
+  ensureConnected(until);
+  const std::string what = "write coil " + std::to_string(map_.feed_hold.coil);
+  Bytes pdu = {kWriteSingleCoil};
+  putBe16(pdu, static_cast<unsigned>(map_.feed_hold.coil));
+  putBe16(pdu, hold ? 0xFF00 : 0x0000);
+  const Bytes reply = exchange(pdu, what, until);
+  // A write-single-coil reply echoes the request: anything else did not write it.
+  if (reply != pdu) {
+    std::string echoed = reply.size() == 5 ? "coil " + std::to_string(be16(reply.data() + 1)) +
+                                                 " value " + hex(be16(reply.data() + 3), 4)
+                                           : std::to_string(reply.size()) + " PDU bytes";
+    fail(Kind::kMalformed, EMBBADDATA, what,
+         "the reply echoes " + echoed + ", not coil " + std::to_string(map_.feed_hold.coil) +
+             " value " + hex(hold ? 0xFF00 : 0, 4));
   }
-  next_wait_ = policy_.initial;
-  last_wait_ = std::chrono::milliseconds(0);
+  succeeded();
 }
 
 }  // namespace mdhd::protocol

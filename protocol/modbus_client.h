@@ -3,14 +3,22 @@
 // shadow polls; `ModbusTcpClient` is its libmodbus implementation.
 //
 // Failures are ModbusError, never a crash, a hang beyond timeout_ms or a SIGPIPE.
-// After any failure except a Modbus exception reply (illegal address, ...: the
-// connection is still in step) the client drops the connection, because libmodbus
-// takes a late reply for the next request after a timeout, and reconnects on a
-// later call once its backoff has passed: 50 ms, doubling per failure up to 2 s,
-// back to 50 ms after a success. A call inside the backoff fails at once with
-// kind kBackoff: the client never sleeps, so a poller keeps its own rhythm.
+// timeout_ms bounds a whole call (read(): connecting when needed and every read of
+// the poll; writeFeedHold(): connecting and the write), however the peer paces its
+// bytes; only resolving a host name is outside it (an address or "localhost" is
+// immediate). Every reply is checked: transaction id, protocol id 0, an MBAP
+// length that matches the reply, the unit id, the function, the byte count, and a
+// coil write's echo.
+// After any failure except a Modbus exception reply or a bad value (the
+// connection is still in step) the client drops the connection (a late reply
+// would be taken for the next request) and reconnects on a later call once its
+// backoff has passed: 50 ms, doubling per failure up to 2 s, back to 50 ms after a
+// success. A call inside the backoff fails at once with kind kBackoff: the client
+// never sleeps, so a poller keeps its own rhythm.
 //
-// Thread-safety: none. Use one client per polling thread.
+// Thread-safety: one client per polling thread; only interrupt() may be called
+// from another thread.
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -19,8 +27,6 @@
 #include <vector>
 
 #include "protocol/modbus_map.h"
-
-struct _modbus;  // libmodbus's context (modbus_t)
 
 namespace mdhd::protocol {
 
@@ -34,6 +40,7 @@ class ModbusError : public std::runtime_error {
     kMalformed,       // a reply that is not a valid answer to the request
     kBadValue,        // registers read fine but decode to no value (NaN, inf, ...)
     kBackoff,         // waiting before the next reconnection attempt
+    kInterrupted,     // interrupt() was called (the caller is stopping)
   };
   ModbusError(Kind kind, int code, const std::string& message)
       : std::runtime_error(message), kind_(kind), code_(code) {}
@@ -54,6 +61,9 @@ class RegisterSource {
   virtual ModbusSample read() = 0;
   // Writes the map's feed-hold coil (true: hold). Throws ModbusError.
   virtual void writeFeedHold(bool hold) = 0;
+  // From any thread: a call blocked on the network, and every later call, fails
+  // at once with kind kInterrupted. For stopping the thread that polls.
+  virtual void interrupt() {}
 };
 
 struct BackoffPolicy {
@@ -74,11 +84,12 @@ class ModbusTcpClient : public RegisterSource {
 
   ModbusSample read() override;
   void writeFeedHold(bool hold) override;
+  void interrupt() override;
 
   // The raw registers of one read (as planReads plans them), for tools and benches.
   std::vector<std::uint16_t> readBlock(const ReadBlock& block);
 
-  bool connected() const { return connected_; }
+  bool connected() const { return fd_ >= 0; }
   // The wait imposed by the latest failure (0 after a success) and the next one's.
   std::chrono::milliseconds lastWait() const { return last_wait_; }
   std::chrono::milliseconds nextWait() const { return next_wait_; }
@@ -88,18 +99,36 @@ class ModbusTcpClient : public RegisterSource {
   const ModbusMap& map() const { return map_; }
 
  private:
-  void ensureConnected();
-  void readInto(const ReadBlock& block, std::uint16_t* out);
+  using Deadline = std::chrono::steady_clock::time_point;
+  using Bytes = std::vector<std::uint8_t>;
+
+  Deadline deadline() const;
+  void ensureConnected(Deadline deadline);
+  void connectTo(Deadline deadline);
+  void readInto(const ReadBlock& block, std::uint16_t* out, Deadline deadline);
+  // Sends one request PDU and returns the reply PDU after checking its MBAP
+  // header (transaction, protocol, length, unit) and function; an exception
+  // reply throws kException.
+  Bytes exchange(const Bytes& pdu, const std::string& what, Deadline deadline);
+  // Waits until fd_ is ready for `events` or the wake fd fires; throws on the
+  // deadline or an interrupt.
+  void waitFor(short events, const std::string& what, Deadline deadline);
+  void sendAll(const Bytes& bytes, const std::string& what, Deadline deadline);
+  void receive(std::uint8_t* out, std::size_t n, const std::string& what, Deadline deadline);
+  void succeeded();
   void disconnect();
-  [[noreturn]] void fail(int code, const std::string& what);
+  [[noreturn]] void fail(ModbusError::Kind kind, int code, const std::string& what,
+                         const std::string& detail);
   std::string where() const;
 
   ModbusMap map_;
   std::vector<ReadBlock> blocks_;
   BackoffPolicy policy_;
   Clock clock_;
-  _modbus* ctx_ = nullptr;
-  bool connected_ = false;
+  int fd_ = -1;
+  int wake_fd_ = -1;  // eventfd written by interrupt()
+  std::atomic<bool> interrupted_{false};
+  std::uint16_t transaction_ = 0;
   std::chrono::milliseconds last_wait_{0};
   std::chrono::milliseconds next_wait_;
   std::chrono::steady_clock::time_point next_attempt_{};

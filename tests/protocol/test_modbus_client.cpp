@@ -232,6 +232,148 @@ TEST(ModbusClient, WritesTheFeedHoldCoil) {
   EXPECT_EQ(requests[1][10], 0x00);
 }
 
+// A reply sent a byte at a time, each byte well within the timeout: the whole
+// exchange has one deadline, so the dribble is a timeout, not a stale pose.
+TEST(ModbusClient, ReplyDribbledByteByByteTimesOutAtTheDeadline) {
+  RawPeer peer = badThenGood([](const Bytes& req, int fd) {
+    const Bytes reply = modbus_test::readReply(req, kGoodRegisters);
+    // 15 bytes, one every 30 ms: 450 ms in all; the peer gives up (and serves the
+    // next connection) once the client must have.
+    const auto until =
+        std::chrono::steady_clock::now() + std::chrono::milliseconds(kTimeoutMs + 30);
+    for (std::uint8_t b : reply) {
+      if (std::chrono::steady_clock::now() > until) break;
+      modbus_test::sendAll(fd, {b});
+      std::this_thread::sleep_for(std::chrono::milliseconds(kTimeoutMs / 5));
+    }
+    return false;
+  });
+  ModbusTcpClient client(mapFor(peer.port()));
+  const Outcome o = failedRead(client);
+  EXPECT_EQ(o.kind, Kind::kTimeout) << o.message;
+  EXPECT_GE(o.ms, kTimeoutMs * 0.9);
+  EXPECT_LT(o.ms, kTimeoutMs + 300);  // old client: 15 bytes x 30 ms, a byte timeout each
+  EXPECT_THAT(o.message, ::testing::HasSubstr("no complete reply within 150 ms"));
+  expectRecovery(client);
+}
+
+// interrupt() from another thread ends a read blocked on a peer that never
+// answers (timeout 60 s) at once, and every later call.
+TEST(ModbusClient, InterruptEndsABlockedReadAtOnce) {
+  RawPeer peer([](int, const Bytes&, int) { return true; });  // accepts, never answers
+  ModbusMap map = mapFor(peer.port());
+  map.timeout_ms = 60000;
+  ModbusTcpClient client(map);
+  std::thread stopper([&client] {
+    std::this_thread::sleep_for(100ms);
+    client.interrupt();
+  });
+  const Outcome o = failedRead(client);
+  stopper.join();
+  EXPECT_EQ(o.kind, Kind::kInterrupted) << o.message;
+  EXPECT_LT(o.ms, 1500);
+  EXPECT_EQ(failedRead(client).kind, Kind::kInterrupted);
+  EXPECT_FALSE(client.connected());
+}
+
+// libmodbus 3.1.6 took these replies: each must fail the poll as malformed.
+void expectMalformed(std::function<Bytes(const Bytes& req)> reply, const char* says) {
+  RawPeer peer = badThenGood([reply](const Bytes& req, int fd) {
+    modbus_test::sendAll(fd, reply(req));
+    return true;
+  });
+  ModbusTcpClient client(mapFor(peer.port()));
+  const Outcome o = failedRead(client);
+  EXPECT_EQ(o.kind, Kind::kMalformed) << o.message;
+  EXPECT_THAT(o.message, ::testing::HasSubstr(says));
+  EXPECT_LT(o.ms, kTimeoutMs);  // told at once, not a timeout
+  expectRecovery(client);
+}
+
+TEST(ModbusClient, ReplyFromAnotherUnitIsMalformed) {
+  expectMalformed(
+      [](const Bytes& req) {
+        Bytes r = modbus_test::readReply(req, kGoodRegisters);
+        r[6] = static_cast<std::uint8_t>(r[6] + 1);
+        return r;
+      },
+      "unit id 2, not 1");
+}
+
+TEST(ModbusClient, ReplyWithAnotherProtocolIdIsMalformed) {
+  expectMalformed(
+      [](const Bytes& req) {
+        Bytes r = modbus_test::readReply(req, kGoodRegisters);
+        r[3] = 7;
+        return r;
+      },
+      "protocol id is 7");
+}
+
+TEST(ModbusClient, MbapLengthThatDoesNotMatchIsMalformed) {
+  // Two bytes more than the byte count says, the MBAP length counting them.
+  expectMalformed(
+      [](const Bytes& req) {
+        Bytes r = modbus_test::readReply(req, kGoodRegisters);
+        r[5] = static_cast<std::uint8_t>(r[5] + 2);
+        r.insert(r.end(), {0, 0});
+        return r;
+      },
+      "PDU bytes");
+  expectMalformed(
+      [](const Bytes& req) {
+        Bytes r = modbus_test::readReply(req, kGoodRegisters);
+        r[4] = 0xFF;
+        r[5] = 0xFF;
+        return r;
+      },
+      "MBAP length is 65535");
+  expectMalformed(
+      [](const Bytes& req) {
+        Bytes r = modbus_test::readReply(req, kGoodRegisters);
+        r[5] = 0;
+        return r;
+      },
+      "MBAP length is 0");
+}
+
+TEST(ModbusClient, RefusedCoilWriteIsAnException) {
+  RawPeer peer([](int, const Bytes& req, int fd) {
+    modbus_test::sendAll(fd, Bytes{req[0], req[1], 0, 0, 0, 3, req[6], 0x85, 0x04});
+    return true;
+  });
+  ModbusMap map = mapFor(peer.port());
+  map.feed_hold = {7, true};
+  ModbusTcpClient client(map);
+  try {
+    client.writeFeedHold(true);
+    ADD_FAILURE() << "the write succeeded";
+  } catch (const ModbusError& e) {
+    EXPECT_EQ(e.kind(), Kind::kException);
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("write coil 7"));
+  }
+}
+
+TEST(ModbusClient, CoilWriteEchoingAnotherValueFails) {
+  RawPeer peer([](int, const Bytes& req, int fd) {
+    Bytes r = req;
+    r[10] = 0;  // echoes "off" where "on" was written
+    modbus_test::sendAll(fd, r);
+    return true;
+  });
+  ModbusMap map = mapFor(peer.port());
+  map.feed_hold = {7, true};
+  ModbusTcpClient client(map);
+  try {
+    client.writeFeedHold(true);
+    ADD_FAILURE() << "the write succeeded";
+  } catch (const ModbusError& e) {
+    EXPECT_EQ(e.kind(), Kind::kMalformed);
+    EXPECT_THAT(e.what(),
+                ::testing::HasSubstr("echoes coil 7 value 0x0000, not coil 7 value 0xff00"));
+  }
+}
+
 // --- pymodbus ---
 
 // Serves, for each pymodbus (byteorder, wordorder) pair i, at 10*i: float32 -123.25,
