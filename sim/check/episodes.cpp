@@ -21,14 +21,22 @@ void Episodes::touch(const EpisodeKey& key, double depth, int line,
   it->second.touched = true;
 }
 
-double Episodes::overlapSeen(const EpisodeKey& key) const {
+double Episodes::travelSinceMeasured(const EpisodeKey& key) const {
   const auto it = open_.find(key);
-  return it == open_.end() ? -1.0 : it->second.overlap;
+  return it == open_.end() ? -1.0 : it->second.travel;
 }
 
-void Episodes::noteOverlap(const EpisodeKey& key, double overlap) {
-  if (const auto it = open_.find(key); it != open_.end())
-    it->second.overlap = std::max(it->second.overlap, overlap);
+void Episodes::addTravel(const EpisodeKey& key, double mm) {
+  if (const auto it = open_.find(key); it != open_.end()) it->second.travel += mm;
+}
+
+void Episodes::measured(const EpisodeKey& key) {
+  if (const auto it = open_.find(key); it != open_.end()) it->second.travel = 0.0;
+}
+
+double Episodes::depth(const EpisodeKey& key) const {
+  const auto it = open_.find(key);
+  return it == open_.end() ? -1.0 : collisions_[it->second.index].depth;
 }
 
 void Episodes::endStep(bool motionScope) {

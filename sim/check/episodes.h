@@ -28,10 +28,15 @@ class Episodes {
              const std::function<Collision()>& start);
   // Whether an episode of `key` is open (touched by the previous step).
   bool isOpen(const EpisodeKey& key) const { return open_.count(key) != 0; }
-  // The longest overlap (mm along a grid line) noted for the open episode of `key`,
-  // or -1 when none is open: a step that overlaps no more need not be measured again.
-  double overlapSeen(const EpisodeKey& key) const;
-  void noteOverlap(const EpisodeKey& key, double overlap);
+  // How far (mm) any point of the part may have moved since the open episode of `key`
+  // was last measured, or -1 when none is open. Depth grows no faster than the part
+  // moves (the material only shrinks), so until it passes the depth's resolution the
+  // episode need not be measured again.
+  double travelSinceMeasured(const EpisodeKey& key) const;
+  void addTravel(const EpisodeKey& key, double mm);
+  void measured(const EpisodeKey& key);
+  // The depth of the open episode of `key` so far (-1 when none is open).
+  double depth(const EpisodeKey& key) const;
   // Ends a step: episodes of `scope` not touched since the last endStep are closed.
   // Scopes keep per-step contacts apart from per-motion ones (axis limits).
   void endStep(bool motionScope);
@@ -43,7 +48,7 @@ class Episodes {
   struct Open {
     std::size_t index = 0;
     bool touched = false;
-    double overlap = 0.0;
+    double travel = 0.0;  // mm, since the last measurement
   };
   std::map<EpisodeKey, Open> open_;
   std::vector<Collision> collisions_;

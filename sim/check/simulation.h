@@ -16,6 +16,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "sim/check/contact_depth.h"
@@ -84,6 +85,10 @@ class Simulation final : public gcode::MotionSink {
              const geom::Aabb& stock, std::vector<std::unique_ptr<geom::LineSolid>> fixtures,
              SimulationOptions options);
   ~Simulation() override;
+  // Why the constructor would refuse this stock (a grid too fine for the engine), or
+  // empty: lets a service refuse a job when it is submitted rather than when it runs.
+  static std::string stockProblem(const kin::Machine& machine, const std::vector<geom::Tool>& tools,
+                                  const geom::Aabb& stock, const SimulationOptions& options);
 
   // Throws gcode::GcodeError at the motion's place when it cannot be simulated (a
   // singular tool-centre-point pose, a half-turn of the tool axis within one fixed
@@ -179,6 +184,19 @@ class Simulation final : public gcode::MotionSink {
   void closeToolRemoval(int next);
   // Books a cut's removal and overhang events against the motion at `line`.
   void noteCut(const mdh::CutResult& r, int line);
+  // How far any point of `part` moves over the step along the chord (the tip's move
+  // plus the axis's turn times the part's reach).
+  static double chordTravel(const Step& step, const geom::ToolPart& part);
+  // A depth no measure of `part` needs to look past (contact's `enough`).
+  double deepEnough(const geom::ToolPart& part) const;
+  // Whether the open episode of `key` may skip this step's measure (adds the step's
+  // travel to it): its part moved less than a grid spacing since the last measure, or
+  // it is as deep as the part allows.
+  bool measureCanWait(const EpisodeKey& key, const Step& step, const geom::ToolPart& part);
+  // Records the stock's z lines under `sweep` that this motion has not recorded yet:
+  // taken before a rapid's (or spindle-off) step cuts, they are the material the motion
+  // met, which its depth is measured against.
+  void keepMaterialBefore(const geom::SweptVolume& sweep);
   void stockContacts(const Step& step);
   void fixtureContacts(const Step& step);
   Collision entry(const Step& step, CollisionType type, double f) const;
@@ -198,6 +216,11 @@ class Simulation final : public gcode::MotionSink {
   bool mayTouchStock(const PartBall& ball, const geom::ToolPose& a, const geom::ToolPose& b) const;
   void checkCancel() const;
   void requireFlushed(const char* what) const;
+
+  // The z lines (key: ix | iy << 32) as they were before the current motion's cutter
+  // met them in a rapid or with the spindle off (keepMaterialBefore); cleared per motion.
+  std::unordered_map<std::uint64_t, std::vector<geom::Interval>> material_before_;
+  std::size_t material_before_intervals_ = 0;
 
   const kin::Kinematics& kin_;
   std::map<int, ToolParts> tools_;

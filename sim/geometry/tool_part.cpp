@@ -80,6 +80,13 @@ double ToolPart::reach(double height) const {
   return r;
 }
 
+double ToolPart::maxRadius() const {
+  double r = 0.0;
+  for (const ConvexBody& b : bodies)
+    for (const RevolvedPiece& p : b.pieces) r = std::max(r, p.maxRadius());
+  return r;
+}
+
 double ToolPart::centreHeight() const {
   if (bodies.empty()) return 0.0;
   double lo = bodies.front().bottom();

@@ -56,6 +56,9 @@ struct ToolPart {
   // Distance of the farthest point from the axis point at `height` above the tip:
   // what a turn of the axis about that point moves most.
   double reach(double height = 0.0) const;
+  // The widest radius: no point lies deeper inside the part than that (the ball about
+  // it must fit in the part's section through its centre).
+  double maxRadius() const;
   // Half-way between the lowest and highest point: the pivot with the least reach.
   double centreHeight() const;
   // How far the part's surface moves at most (Hausdorff distance) per radian its axis

@@ -46,48 +46,81 @@ std::string gridMessage(const std::string& what, double density) {
   return text + what + ": lower the density";
 }
 
-}  // namespace
+// The grid and bricks a box and options give, or why they cannot make a stock.
+struct GridPlan {
+  int cubes[3]{};
+  int brickSize[3]{};
+  int bricks[3]{};
+  std::int64_t brickCount = 1;
+  std::string problem;  // empty: usable
+};
 
-Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(options)) {
-  if (!(options_.density > 0.0) || !std::isfinite(options_.density))
-    throw std::invalid_argument("mdh: density must be a positive number of grid points per mm");
-  if (options_.brick < 0) throw std::invalid_argument("mdh: brick size must be >= 0");
-  if (options_.brick_z < -1) throw std::invalid_argument("mdh: brick_z must be >= -1");
-  grid_.origin = box.lo;
-  grid_.h = 1.0 / options_.density;
-  std::int64_t bricks = 1;
+GridPlan planGrid(const geom::Aabb& box, const StockOptions& o) {
+  GridPlan plan;
+  if (!(o.density > 0.0) || !std::isfinite(o.density)) {
+    plan.problem = "mdh: density must be a positive number of grid points per mm";
+    return plan;
+  }
+  if (o.brick < 0 || o.brick_z < -1) {
+    plan.problem = o.brick < 0 ? "mdh: brick size must be >= 0" : "mdh: brick_z must be >= -1";
+    return plan;
+  }
+  const double h = 1.0 / o.density;
   for (int a = 0; a < 3; ++a) {
     const double extent = box.hi[a] - box.lo[a];
-    if (!(extent > 0.0) || !std::isfinite(extent))
-      throw std::invalid_argument(std::string("mdh: stock box is empty or invalid along ") +
-                                  kAxisNames[a]);
+    if (!(extent > 0.0) || !std::isfinite(extent)) {
+      plan.problem = std::string("mdh: stock box is empty or invalid along ") + kAxisNames[a];
+      return plan;
+    }
     // The max corner snaps to the nearest grid plane.
-    const double cubes = std::max(1.0, std::round(extent / grid_.h));
-    if (cubes > kMaxCubesPerAxis)
-      throw std::invalid_argument(gridMessage("the stock is " + number(cubes) +
-                                                  " grid cubes along " + kAxisNames[a] +
-                                                  ", more than " + number(kMaxCubesPerAxis),
-                                              options_.density));
-    grid_.cubes[a] = static_cast<int>(cubes);
-    const int size = a == 2 && options_.brick_z >= 0 ? options_.brick_z : options_.brick;
-    brickSize_[a] = size > 0 ? size : grid_.cubes[a];
-    bricks_[a] = (grid_.cubes[a] + brickSize_[a] - 1) / brickSize_[a];
-    bricks *= bricks_[a];
+    const double cubes = std::max(1.0, std::round(extent / h));
+    if (cubes > kMaxCubesPerAxis) {
+      plan.problem = gridMessage("the stock is " + number(cubes) + " grid cubes along " +
+                                     kAxisNames[a] + ", more than " + number(kMaxCubesPerAxis),
+                                 o.density);
+      return plan;
+    }
+    plan.cubes[a] = static_cast<int>(cubes);
+    const int size = a == 2 && o.brick_z >= 0 ? o.brick_z : o.brick;
+    plan.brickSize[a] = size > 0 ? size : plan.cubes[a];
+    plan.bricks[a] = (plan.cubes[a] + plan.brickSize[a] - 1) / plan.brickSize[a];
+    plan.brickCount *= plan.bricks[a];
   }
   // An overhang unpacks a whole cell (about 25 bytes per vertex), so the
   // largest cell is bounded.
   double cellPoints = 1.0;
-  for (int a = 0; a < 3; ++a) cellPoints *= std::min(brickSize_[a], grid_.cubes[a]) + 1.0;
-  if (cellPoints > kMaxCellPoints)
-    throw std::invalid_argument("mdh: cells of " + std::to_string(cellPoints) +
-                                " grid points are too large to unpack; use a brick size of at "
-                                "most 256 (or a coarser density)");
-  if (bricks > kMaxBricks)
-    throw std::invalid_argument(
-        gridMessage("the stock's grid of " + number(grid_.cubes[0]) + " x " +
-                        number(grid_.cubes[1]) + " x " + number(grid_.cubes[2]) + " cubes needs " +
-                        number(double(bricks)) + " bricks, more than " + number(double(kMaxBricks)),
-                    options_.density));
+  for (int a = 0; a < 3; ++a) cellPoints *= std::min(plan.brickSize[a], plan.cubes[a]) + 1.0;
+  if (cellPoints > kMaxCellPoints) {
+    plan.problem = "mdh: cells of " + number(cellPoints) +
+                   " grid points are too large to unpack; use a brick size of at most 256 (or "
+                   "a coarser density)";
+  } else if (plan.brickCount > kMaxBricks) {
+    plan.problem = gridMessage("the stock's grid of " + number(plan.cubes[0]) + " x " +
+                                   number(plan.cubes[1]) + " x " + number(plan.cubes[2]) +
+                                   " cubes needs " + number(double(plan.brickCount)) +
+                                   " bricks, more than " + number(double(kMaxBricks)),
+                               o.density);
+  }
+  return plan;
+}
+
+}  // namespace
+
+std::string Stock::gridProblem(const geom::Aabb& box, const StockOptions& options) {
+  return planGrid(box, options).problem;
+}
+
+Stock::Stock(const geom::Aabb& box, StockOptions options) : options_(std::move(options)) {
+  const GridPlan plan = planGrid(box, options_);
+  if (!plan.problem.empty()) throw std::invalid_argument(plan.problem);
+  grid_.origin = box.lo;
+  grid_.h = 1.0 / options_.density;
+  for (int a = 0; a < 3; ++a) {
+    grid_.cubes[a] = plan.cubes[a];
+    brickSize_[a] = plan.brickSize[a];
+    bricks_[a] = plan.bricks[a];
+  }
+  const std::int64_t bricks = plan.brickCount;
   roots_.resize(static_cast<std::size_t>(bricks));
   for (int z = 0; z < bricks_[2]; ++z)
     for (int y = 0; y < bricks_[1]; ++y)

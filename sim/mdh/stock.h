@@ -105,6 +105,9 @@ class Stock {
  public:
   // Throws std::invalid_argument for an empty box, a non-positive density or a grid too large.
   Stock(const geom::Aabb& box, StockOptions options);
+  // Why `box` and `options` cannot make a stock (the constructor's std::invalid_argument
+  // text), or empty: for checking a job before it runs, without allocating the grid.
+  static std::string gridProblem(const geom::Aabb& box, const StockOptions& options);
   ~Stock();
   Stock(const Stock&) = delete;
   Stock& operator=(const Stock&) = delete;

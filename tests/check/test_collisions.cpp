@@ -166,6 +166,28 @@ TEST(Collisions, ThinShankDraggedThroughTheStockAtAnyDensity) {
   }
 }
 
+// A shank pushed sideways into the side of the stock in moves far shorter than a grid
+// spacing keeps its height in the material while it goes deeper: the depth is how far
+// in it went (once measured at the first contact's 0.1 mm and never again), whether the
+// move comes in one block or in 50.
+TEST(Collisions, ShankPushedSidewaysInShortMovesIsMeasuredAtItsDeepest) {
+  for (const int moves : {1, 50}) {
+    std::string program = std::string(kStart) +
+                          "M3 S9000\nG0 X-3.5 Y20 Z5\n"  // 4-5: the shank's side 0.5 mm off x = 0
+                          "G1 Z-15 F200\n";  // 6: the shank from -5 up, beside the stock
+    for (int i = 1; i <= moves; ++i)
+      program += "G1 X" + std::to_string(-3.5 + 2.5 * i / moves) + " F400\n";  // to X-1: 2 mm in
+    const Report r = run(Rig{}, program + "G0 Z5\nM5\nM30\n");
+    const auto shank = ofType(r, CollisionType::kShankContact);
+    ASSERT_EQ(shank.size(), 1u) << moves;
+    if (moves == 1) {
+      EXPECT_EQ(shank[0]->line, 7);
+    }
+    EXPECT_EQ(shank[0]->last_line, 6 + moves);
+    EXPECT_NEAR(shank[0]->depth, 2.0, 0.12) << moves << " moves";
+  }
+}
+
 // Drilled holes' volumes against the closed form, for tips from 90 to 170 degrees: a
 // blunt tip puts the wall's foot between grid levels, where the volume integral once
 // walked a wall's crossings out of order (+0.75 % at 10 points/mm for 170 degrees).
@@ -311,6 +333,58 @@ TEST(Collisions, TableTurnsThePartIntoAToolWithTheSpindleOff) {
   // The tip's path in W: from home (tip at z 260) to the start, then the 60 degree arc
   // within the chordal tolerance.
   EXPECT_NEAR(r.stats.path_length, std::hypot(16.0, 255.0) + 16.0 * pi / 3, 0.01);
+}
+
+// The table turns a corner of the part into the tool's shank: the depth is how far the
+// corner went in at its deepest (C45), not the first sliver of a contact that then only
+// slides along its own height in the material (0.2 mm once, for 2.28).
+TEST(Collisions, TableTurnsACornerIntoTheShank) {
+  Rig s = trunnion();
+  s.stock = {{-20, -20, 0}, {20, 20, 30}};
+  s.options.density = 10;
+  geom::Tool t = flatTool();
+  t.diameter = 2;
+  t.flute_length = 5;
+  t.shank_diameter = 8;
+  t.length = 60;
+  s.tools.push_back(t);
+  const Report r =
+      run(std::move(s), std::string(kStart) +
+                            "M3 S8000\nG0 X30 Y0 Z50\n"  // 4-5: the shank's axis 30 from C
+                            "G1 Z10 F500\n"              // 6: the cutter clear (31 > 28.3)
+                            "G1 C90 F3600\n"             // 7: the corner passes at C45
+                            "G0 Z100\nM5\nM30\n");
+  const auto shank = ofType(r, CollisionType::kShankContact);
+  ASSERT_EQ(shank.size(), 1u);
+  EXPECT_EQ(shank[0]->line, 7);
+  EXPECT_NEAR(shank[0]->depth, 4.0 - (30.0 - 20.0 * std::sqrt(2.0)), 0.12);  // 2.28
+  EXPECT_TRUE(ofType(r, CollisionType::kRapidIntoStock).empty());
+}
+
+// A rapid turn of the table swings the part over the whole cutter: the depth is the
+// cutter's radius, measured against the material the motion met, not the slivers its
+// earlier steps left (the finer the steps, the shallower it read: 1.06 for 4).
+TEST(Collisions, RapidTurnBuriesTheWholeCutter) {
+  for (const int steps : {0, 100}) {
+    Rig s = trunnion();
+    s.stock = {{-20, -20, 0}, {20, 20, 30}};
+    s.options.density = 10;
+    s.options.steps = steps;
+    geom::Tool t = flatTool();
+    t.diameter = t.shank_diameter = 8;
+    t.flute_length = 30;
+    t.length = 60;
+    s.tools.push_back(t);
+    const Report r = run(std::move(s), std::string(kStart) +
+                                           "M3 S8000\nG0 X0 Y30 Z60\n"  // 4-5
+                                           "G0 Z10\n"                   // 6: beside the +Y face
+                                           "G0 A-45\n"                  // 7: the part turns over it
+                                           "G0 Z100\nM5\nM30\n");
+    const auto rapid = ofType(r, CollisionType::kRapidIntoStock);
+    ASSERT_EQ(rapid.size(), 1u) << steps;
+    EXPECT_EQ(rapid[0]->line, 7);
+    EXPECT_NEAR(rapid[0]->depth, 4.0, 0.15) << steps << " steps";
+  }
 }
 
 TEST(Collisions, TiltedRapidIntoTheSideFace) {
