@@ -55,7 +55,8 @@ void MotionOutput::fill(MotionType type, const AxisValues& end, const InterpStat
   m.type = type;
   if (m.pos.file != block.pos.file) m.pos.file = block.pos.file;
   m.pos.line = block.pos.line;
-  m.pos.column = 0;
+  // An error of the motion (kinematics, simulation) points at its block's first word.
+  m.pos.column = block.words.empty() ? 1 : block.words.front().column;
   m.block_text = &block.text;
   m.start = machine_;
   m.end = end;

@@ -171,7 +171,7 @@ void Reader::parseBlock(Cursor& c, Block& out) {
   if (!out.comments.empty()) handleComments(out);
   out.pos.file = *ref_.file;
   out.pos.line = ref_.line;
-  out.pos.column = 0;
+  out.pos.column = out.words.empty() ? 1 : out.words.front().column;  // the block's place
   out.text = raw_;
 }
 

@@ -387,6 +387,24 @@ TEST(Collisions, RapidTurnBuriesTheWholeCutter) {
   }
 }
 
+// A turn of the table too long for the step budget is an error at its line, not a cut
+// whose last pieces are chords far off the arc (C1000000 removed 44 % too much); a
+// long turn within the budget is simulated.
+TEST(Collisions, TurnTooLongForTheStepBudgetIsAnErrorAtItsLine) {
+  const std::string start = std::string(kStart) + "M3 S8000\nG0 X16 Y0 Z5\nG1 Z8 F500\n";
+  try {
+    run(trunnion(), start + "G1 C1000000 F360000\nM30\n");  // line 7
+    ADD_FAILURE() << "simulated";
+  } catch (const gcode::GcodeError& e) {
+    EXPECT_EQ(e.pos().line, 7);
+    EXPECT_EQ(e.pos().column, 1);  // the block's first word
+    EXPECT_NE(std::string(e.what()).find("split it into shorter moves"), std::string::npos)
+        << e.what();
+  }
+  const Report r = run(trunnion(), start + "G1 C3600 F360000\nM30\n");
+  EXPECT_EQ(r.status, Status::kClean);
+}
+
 TEST(Collisions, TiltedRapidIntoTheSideFace) {
   // A-90 turns the part's -Y face up (the side drill's convention: tool axis -Y in W).
   const Report r = run(trunnion(), std::string(kStart) +
