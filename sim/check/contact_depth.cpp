@@ -120,11 +120,15 @@ Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& pa
     }
     return false;
   };
-  const bool early = measure && std::isfinite(enough);
+  // No point of an overlap lies deeper in the sweep than half the sweep's own interval
+  // on the line allows (its ends are the sweep's boundary): overlaps are sampled in
+  // the order of that bound, and those whose bound cannot beat the depth found by more
+  // than h/4 are not sampled at all (a holder dragged sideways through the stock
+  // samples a few lines instead of thousands).
   struct Found {
-    double length, x, y, lo, hi;
+    double bound, x, y, lo, hi;
   };
-  std::vector<Found> found;  // early out: the overlaps, longest (likely deepest) first
+  std::vector<Found> found;
   std::vector<geom::Interval> mat, tool, both;
   for (int iy = ys; iy <= y1; iy += sy) {
     for (int ix = xs; ix <= x1; ix += sx) {
@@ -135,21 +139,27 @@ Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& pa
       mat.clear();
       material(ix, iy, x, y, mat);
       overlaps(mat, tool, both);
+      std::size_t t = 0;  // the sweep's interval holding the overlap (both are sorted)
       for (const geom::Interval& o : both) {
         const double lo = std::max(o.lo, box.lo.z), hi = std::min(o.hi, box.hi.z);
         if (!(hi > lo)) continue;
         out.max_overlap = std::max(out.max_overlap, hi - lo);
-        if (early)
-          found.push_back({hi - lo, x, y, lo, hi});
-        else if (measure)
-          sample(x, y, lo, hi);
+        if (!measure) continue;
+        while (t + 1 < tool.size() && tool[t].hi < lo) ++t;
+        const double mid = 0.5 * (tool[t].lo + tool[t].hi);
+        const double bound = mid < lo   ? tool[t].hi - lo
+                             : mid > hi ? hi - tool[t].lo
+                                        : 0.5 * (tool[t].hi - tool[t].lo);
+        found.push_back({bound * (1.0 + 1e-12) + 1e-12, x, y, lo, hi});
       }
     }
   }
   std::sort(found.begin(), found.end(),
-            [](const Found& a, const Found& b) { return a.length > b.length; });
-  for (const Found& f : found)
+            [](const Found& a, const Found& b) { return a.bound > b.bound; });
+  for (const Found& f : found) {
+    if (f.bound <= out.depth + 0.25 * grid.h) break;
     if (sample(f.x, f.y, f.lo, f.hi)) break;
+  }
   return out;
 }
 

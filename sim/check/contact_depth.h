@@ -39,8 +39,10 @@ struct Penetration {
 
 // `within`: only this box of the part's bounds is sampled (e.g. its overlap with a
 // fixture); lines outside `grid` are skipped. `measure` false: only max_overlap.
-// `enough`: stops at the first sample deeper than that, sampling the longest overlaps
-// first (a lower bound of the depth: the full measure samples the same points).
+// Overlaps are sampled in the order of a bound on their depth (half the sweep's own
+// interval on the line) and skipped once that bound cannot beat the depth found by more
+// than h/4 (the result is within h/4 of sampling them all). `enough`: stops at the first sample deeper
+// than that (a lower bound of the depth).
 Penetration penetration(const geom::SweptVolume& sweep, const geom::ToolPart& part,
                         const geom::Aabb& within, const LineGrid& grid,
                         const MaterialLine& material, bool measure = true,
