@@ -198,6 +198,22 @@ void addShadowRoutes(HttpService& http, shadow::ShadowRegistry& shadows, JobStor
                postShadow(req, res, shadows, store, config);
              });
   http.route({"GET",
+              kShadows,
+              {{"summary", "The shadows: id, state, samples, host and port of each"},
+               {"tags", tags},
+               {"description",
+                "Running and stopped (not yet deleted) shadows, by id: for a client that lost "
+                "an id. The full state of one is GET /api/v1/shadows/{id}."},
+               {"responses",
+                {{"200", jsonResponse("{\"shadows\": [{\"id\", \"state\", \"samples\", "
+                                      "\"host\", \"port\"}, ...]}",
+                                      {{"type", "object"}})}}}}},
+             [&shadows](const httplib::Request&, httplib::Response& res) {
+               nlohmann::json list = nlohmann::json::array();
+               for (const auto& s : shadows.all()) list.push_back(s->summary());
+               sendJson(res, 200, {{"shadows", std::move(list)}});
+             });
+  http.route({"GET",
               std::string(kShadows) + "/{id}",
               {{"summary", "A shadow's state, pose, alarms and live report"},
                {"tags", tags},

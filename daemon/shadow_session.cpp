@@ -46,6 +46,11 @@ ShadowSession::ShadowSession(std::string id, ShadowSpec spec, SessionOptions opt
   });
   if (!spec_.map.line) options_.lookahead = false;  // the program cannot be followed
   if (spec_.job.tools.size() == 1) tool_hint_ = spec_.job.tools.front().number;
+  watchdog_ = std::chrono::duration_cast<SteadyClock::duration>(
+      std::chrono::duration<double>(1.0 / spec_.map.poll_hz) +
+      std::chrono::milliseconds(spec_.map.timeout_ms));
+  report_dirty_ = true;
+  refreshReport(std::chrono::milliseconds(0));  // the raw stock's
 }
 
 ShadowSession::~ShadowSession() {
@@ -70,8 +75,14 @@ void ShadowSession::stop() {
     stopping_ = true;
   }
   wake_.notify_all();
+  {
+    // A poll blocked on the network (a peer that never answers) ends now.
+    std::lock_guard lock(source_mutex_);
+    if (source_ != nullptr) source_->interrupt();
+  }
   for (std::thread* t : {&poll_, &carve_, &ahead_})
     if (t->joinable()) t->join();
+  refreshReport(std::chrono::milliseconds(0));  // the last state is exact
   setState(ShadowState::kStopped, "stopped");
   events_.close();
   settled_.notify_all();
@@ -88,9 +99,13 @@ void ShadowSession::raise(Alarm alarm) {
   nlohmann::json j;
   {
     std::lock_guard lock(mutex_);
-    alarm.id = alarms_.size();
+    alarm.id = alarms_raised_++;
     j = alarmToJson(alarm, *spec_.job.machine);
     alarms_.push_back(std::move(alarm));
+    if (alarms_.size() > kKeepFirstAlarms + kKeepLastAlarms) {
+      alarms_.erase(alarms_.begin() + static_cast<std::ptrdiff_t>(kKeepFirstAlarms));
+      ++counters_.alarms_dropped;
+    }
   }
   events_.publish("alarm", j);
   if (spec_.map.feed_hold.enabled) hold_pending_ = true;
@@ -133,11 +148,15 @@ nlohmann::json ShadowSession::status() const {
     for (const Alarm& a : alarms_) alarms.push_back(alarmToJson(a, *spec_.job.machine));
     j["alarms"] = std::move(alarms);
     const ShadowCounters& c = counters_;
+    j["alarms_dropped"] = c.alarms_dropped;
+    const auto text = [](const std::string& t) {
+      return t.empty() ? nlohmann::json(nullptr) : nlohmann::json(t);
+    };
     j["polls"] = {{"ok", c.polls_ok},
                   {"failed", c.polls_failed},
+                  {"backoff", c.polls_backoff},
                   {"poll_hz", spec_.map.poll_hz},
-                  {"last_error",
-                   last_error_.empty() ? nlohmann::json(nullptr) : nlohmann::json(last_error_)}};
+                  {"last_error", text(last_error_)}};
     j["carving"] = {
         {"motions", c.motions},    {"merged", c.merged},   {"motion_errors", c.motion_errors},
         {"thinned", c.thinned},    {"backlog", c.backlog}, {"max_backlog", c.max_backlog},
@@ -146,21 +165,54 @@ nlohmann::json ShadowSession::status() const {
     j["lookahead"] = {{"enabled", track_ != nullptr && options_.lookahead},
                       {"runs", c.lookaheads},
                       {"busy", ahead_busy_ || ahead_task_ != nullptr}};
-    j["feed_hold"] = {{"enabled", spec_.map.feed_hold.enabled},
-                      {"coil", spec_.map.feed_hold.coil},
-                      {"writes", c.feed_hold_writes}};
+    j["feed_hold"] = {{"enabled", spec_.map.feed_hold.enabled}, {"coil", spec_.map.feed_hold.coil},
+                      {"writes", c.feed_hold_writes},           {"failures", c.feed_hold_failures},
+                      {"pending", hold_pending_.load()},        {"error", text(feed_hold_error_)}};
   }
   {
-    // The report walks the stock: at most twice a second, whoever asks.
-    std::lock_guard lock(sim_mutex_);
-    const auto now = SteadyClock::now();
-    if (!report_cache_ || now - report_cache_->first > std::chrono::milliseconds(500)) {
-      const check::Report r = carver_->simulation().snapshot(0);
-      report_cache_.emplace(now, protocol::reportToJson(r, &*spec_.job.machine));
-    }
-    j["report"] = report_cache_->second;
+    // Never sim_mutex_: a batch being cut must not hold up a GET.
+    std::lock_guard lock(report_mutex_);
+    j["report"] = report_;
+    j["report_age_ms"] =
+        std::chrono::duration<double, std::milli>(SteadyClock::now() - report_at_).count();
   }
   return j;
+}
+
+nlohmann::json ShadowSession::summary() const {
+  std::lock_guard lock(mutex_);
+  return {{"id", id_},
+          {"state", shadowStateName(state_.load())},
+          {"samples", counters_.polls_ok},
+          {"host", spec_.map.host},
+          {"port", spec_.map.port}};
+}
+
+void ShadowSession::refreshReport(std::chrono::milliseconds min_age) {
+  {
+    std::lock_guard lock(mutex_);
+    if (!report_dirty_) return;
+  }
+  {
+    std::lock_guard lock(report_mutex_);
+    if (SteadyClock::now() - report_at_ < min_age) return;
+  }
+  nlohmann::json report;
+  {
+    // The report walks the stock: taken by the carve thread between batches.
+    std::lock_guard lock(sim_mutex_);
+    {
+      std::lock_guard small(mutex_);
+      report_dirty_ = false;  // a batch cut from here on marks it again
+    }
+    report = protocol::reportToJson(carver_->simulation().snapshot(0), &*spec_.job.machine);
+  }
+  {
+    std::lock_guard lock(report_mutex_);
+    report_ = std::move(report);
+    report_at_ = SteadyClock::now();
+  }
+  settled_.notify_all();
 }
 
 std::string ShadowSession::stockStl() const {
@@ -184,7 +236,8 @@ double ShadowSession::stockVolume() const {
 bool ShadowSession::waitIdle(std::chrono::milliseconds timeout) const {
   std::unique_lock lock(mutex_);
   return settled_.wait_for(lock, timeout, [&] {
-    return stopping_.load() || (carved_ == polled_ && !ahead_busy_ && !ahead_task_);
+    return stopping_.load() ||
+           (carved_ == polled_ && !ahead_busy_ && !ahead_task_ && !report_dirty_);
   });
 }
 

@@ -6,9 +6,10 @@
 // stock and raises predicted alarms. Events (pose, alarm, state) go to an
 // EventLog for the Server-Sent Events streams.
 //
-// States: connecting (no answer yet), live, stale (the last poll failed: the
-// client reconnects with backoff, the stock is kept), stopped. A shadow is live
-// state in memory, not a durable job: it ends with stop() or the daemon.
+// States: connecting (no answer yet), live, stale (the last poll failed, or no
+// good sample for a poll period plus timeout_ms: the client reconnects with
+// backoff, the stock is kept), stopped. A shadow is live state in memory, not a
+// durable job: it ends with stop() or the daemon.
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -47,10 +48,21 @@ struct SessionOptions {
   // Samples waiting to be cut beyond which every other one of a batch is dropped
   // (coarser chords) so that the carving catches up.
   std::size_t max_backlog = 100'000;
+  // Tests only: called by the carve thread with the simulation held (sim_mutex_)
+  // before it cuts each batch, to stand for a long batch.
+  std::function<void()> while_carving;
 };
+
+// The alarms a shadow keeps: the first kKeepFirstAlarms and the latest
+// kKeepLastAlarms; those in between are dropped (counted) on a looping program.
+inline constexpr std::size_t kKeepFirstAlarms = 100;
+inline constexpr std::size_t kKeepLastAlarms = 100;
 
 struct ShadowCounters {
   std::uint64_t polls_ok = 0, polls_failed = 0;
+  std::uint64_t polls_backoff = 0;  // polls skipped waiting to reconnect (not in polls_failed)
+  std::uint64_t feed_hold_failures = 0;
+  std::uint64_t alarms_dropped = 0;
   std::uint64_t motions = 0, merged = 0, motion_errors = 0, thinned = 0;
   std::uint64_t backlog = 0, max_backlog = 0;  // samples waiting to be cut
   std::uint64_t lookaheads = 0, feed_hold_writes = 0;
@@ -73,7 +85,9 @@ class ShadowSession {
   ShadowSession& operator=(const ShadowSession&) = delete;
 
   void start();
-  // Stops polling and carving (the stock stays readable); idempotent.
+  // Stops polling and carving (the stock stays readable); idempotent. A poll
+  // blocked on the network is interrupted (RegisterSource::interrupt); a batch
+  // being cut is finished first.
   void stop();
 
   const std::string& id() const { return id_; }
@@ -82,8 +96,11 @@ class ShadowSession {
   EventLog& events() { return events_; }
   ShadowCounters counters() const;
   std::vector<Alarm> alarms() const;
-  // The GET /api/v1/shadows/{id} document.
+  // The GET /api/v1/shadows/{id} document. Never waits for the carving: the
+  // report in it is a snapshot the carve thread refreshes (report_age_ms).
   nlohmann::json status() const;
+  // {"id", "state", "samples", "host", "port"}: an entry of GET /api/v1/shadows.
+  nlohmann::json summary() const;
   // The live stock as binary STL.
   std::string stockStl() const;
   double stockVolume() const;
@@ -97,7 +114,15 @@ class ShadowSession {
   void aheadLoop();
   void setState(ShadowState s, const std::string& reason);
   void onGoodPoll(PollSample& s);
-  void onBadPoll(const std::exception& e, const char* kind);
+  void onBadPoll(const std::string& kind, const std::string& what);
+  void writeFeedHold(protocol::RegisterSource& source);
+  // Live with no good sample for watchdog_: stale. Carve thread.
+  void watchdog();
+  // Takes a new report snapshot when the stock changed since the last one and
+  // the last is older than `min_age`. Takes sim_mutex_.
+  void refreshReport(std::chrono::milliseconds min_age);
+  // The reason a sample's tool cannot be cut, empty when it can.
+  std::string unknownTool(const PollSample& s) const;
   void raise(Alarm alarm);
   void refreshAlarmDepths();
   void maybeLookAhead();
@@ -124,8 +149,11 @@ class ShadowSession {
   std::uint64_t polled_ = 0, carved_ = 0;
   std::optional<PollSample> latest_;
   std::optional<std::size_t> cursor_;  // program motion the carving is on
-  std::string last_error_;
-  std::vector<Alarm> alarms_;
+  std::string last_error_;             // the last real failure (never a backoff wait)
+  std::string feed_hold_error_;        // the last failed feed-hold write, empty after a success
+  std::vector<Alarm> alarms_;          // the first and the latest ones (kKeep*Alarms)
+  std::size_t alarms_raised_ = 0;
+  bool report_dirty_ = false;  // the stock changed since the report snapshot
   std::set<std::tuple<int, int, int, std::size_t>> predicted_keys_;
   ShadowCounters counters_;
   int tool_hint_ = 0;
@@ -135,7 +163,16 @@ class ShadowSession {
   gcode::AxisValues ahead_joints_{};
   bool ahead_busy_ = false;
   std::optional<std::size_t> ahead_done_for_;  // cursor of the last look-ahead
-  mutable std::optional<std::pair<SteadyClock::time_point, nlohmann::json>> report_cache_;
+  SteadyClock::duration watchdog_{};           // poll period + timeout_ms
+
+  // The report snapshot: written by the carve thread, read by status().
+  mutable std::mutex report_mutex_;
+  SteadyClock::time_point report_at_{};
+  nlohmann::json report_;
+
+  // The poll thread's source while it runs, for stop() to interrupt it.
+  std::mutex source_mutex_;
+  protocol::RegisterSource* source_ = nullptr;
 
   std::atomic<ShadowState> state_{ShadowState::kConnecting};
   std::atomic<bool> hold_pending_{false};

@@ -2,6 +2,8 @@
 // carving), carving (cuts what was polled, raises alarms) and the look-ahead.
 #include <algorithm>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "daemon/shadow_session.h"
@@ -11,20 +13,70 @@ namespace {
 
 using Seconds = std::chrono::duration<double>;
 
-// Sleeps until `t` in short slices, returning early when `stop` is raised.
-void sleepUntil(SteadyClock::time_point t, const std::atomic<bool>& stop) {
-  constexpr auto kSlice = std::chrono::milliseconds(50);
-  while (!stop.load()) {
-    const auto now = SteadyClock::now();
-    if (now >= t) return;
-    std::this_thread::sleep_until(std::min(t, now + kSlice));
-  }
+// How often the idle carve thread wakes: the watchdog and the report snapshot.
+constexpr auto kCarveTick = std::chrono::milliseconds(50);
+// The report snapshot is at most this old while samples keep coming; once none
+// came for kCarveTick it is taken at once (if the stock changed).
+constexpr auto kReportMaxAge = std::chrono::milliseconds(500);
+
+class UnknownTool : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string toolList(const protocol::Job& job) {
+  std::string out;
+  for (const geom::Tool& t : job.tools) out += (out.empty() ? "" : ", ") + std::to_string(t.number);
+  return out.empty() ? "none" : out;
 }
 
 }  // namespace
 
+std::string ShadowSession::unknownTool(const PollSample& s) const {
+  // Tool 0: the spindle is empty, nothing to cut.
+  if (!s.tool || *s.tool == 0 || spec_.job.findTool(*s.tool) != nullptr) return "";
+  return "the machine holds tool " + std::to_string(*s.tool) +
+         ", which the job does not define (its tools: " + toolList(spec_.job) +
+         "): its moves are neither cut nor checked until a tool of the job is in the spindle";
+}
+
+void ShadowSession::writeFeedHold(protocol::RegisterSource& source) {
+  const nlohmann::json coil = spec_.map.feed_hold.coil;
+  try {
+    source.writeFeedHold(true);
+    {
+      std::lock_guard lock(mutex_);
+      ++counters_.feed_hold_writes;
+      feed_hold_error_.clear();
+    }
+    events_.publish("feed_hold", {{"ok", true}, {"coil", coil}});
+  } catch (const protocol::ModbusError& e) {
+    if (e.kind() == protocol::ModbusError::Kind::kInterrupted) return;  // stopping
+    hold_pending_ = true;  // again before the next poll
+    // Waiting to reconnect is not a new failure: the one that started it stays.
+    if (e.kind() == protocol::ModbusError::Kind::kBackoff) return;
+    const std::string reason =
+        std::string("feed_hold: ") + protocol::modbusErrorKindName(e.kind()) + ": " + e.what();
+    bool first = false;
+    {
+      std::lock_guard lock(mutex_);
+      ++counters_.feed_hold_failures;
+      first = feed_hold_error_.empty();
+      feed_hold_error_ = reason;
+      last_error_ = reason;
+    }
+    // Once per run of failures (it is retried at every poll).
+    if (first) events_.publish("feed_hold", {{"ok", false}, {"coil", coil}, {"error", reason}});
+  }
+}
+
 void ShadowSession::pollLoop() {
   std::unique_ptr<protocol::RegisterSource> source = source_factory_(spec_.map);
+  {
+    std::lock_guard lock(source_mutex_);
+    source_ = source.get();
+    if (stopping_.load()) source->interrupt();  // stop() came first
+  }
   const auto period =
       std::chrono::duration_cast<SteadyClock::duration>(Seconds(1.0 / spec_.map.poll_hz));
   const auto bridge =
@@ -37,18 +89,13 @@ void ShadowSession::pollLoop() {
       Seconds(1.0 / std::max(options_.pose_hz, 0.01)));
   auto next = SteadyClock::now();
   while (!stopping_.load()) {
-    if (hold_pending_.exchange(false)) {
-      try {
-        source->writeFeedHold(true);
-        std::lock_guard lock(mutex_);
-        ++counters_.feed_hold_writes;
-      } catch (const protocol::ModbusError&) {
-        hold_pending_ = true;  // again before the next poll
-      }
-    }
+    if (hold_pending_.exchange(false)) writeFeedHold(*source);
     try {
       const protocol::ModbusSample r = source->read();
       PollSample s{SteadyClock::now(), r.joints, r.tool, r.spindle_on, r.line, false};
+      // Never silently blind: the poll counts as failed and the shadow is stale
+      // until a tool of the job is in; the way back is a resync or a bridge.
+      if (const std::string unknown = unknownTool(s); !unknown.empty()) throw UnknownTool(unknown);
       s.resync = !last_good || (failing && s.t - *last_good > bridge);
       failing = false;
       last_good = s.t;
@@ -65,19 +112,26 @@ void ShadowSession::pollLoop() {
         events_.publish("pose", pose);
       }
     } catch (const protocol::ModbusError& e) {
+      if (e.kind() == protocol::ModbusError::Kind::kInterrupted) break;  // stop()
       failing = true;
-      onBadPoll(e, protocol::modbusErrorKindName(e.kind()));
+      onBadPoll(protocol::modbusErrorKindName(e.kind()), e.what());
     } catch (const protocol::RegisterValueError& e) {
       failing = true;
-      onBadPoll(e, "bad_value");
+      onBadPoll("bad_value", e.what());
+    } catch (const UnknownTool& e) {
+      failing = true;
+      onBadPoll("unknown_tool", e.what());
     }
     next += period;
     const auto now = SteadyClock::now();
     // Late wake-ups are made up by polling at once; after a real stall (more than
     // 20 periods behind) the rhythm starts again from now instead of bursting.
     if (next < now - 20 * period) next = now;
-    sleepUntil(next, stopping_);
+    std::unique_lock lock(mutex_);
+    wake_.wait_until(lock, next, [&] { return stopping_.load(); });
   }
+  std::lock_guard lock(source_mutex_);
+  source_ = nullptr;
 }
 
 void ShadowSession::onGoodPoll(PollSample& s) {
@@ -91,18 +145,35 @@ void ShadowSession::onGoodPoll(PollSample& s) {
     latest_ = s;
   }
   wake_.notify_all();
+  std::lock_guard lock(mutex_);  // against the watchdog
   if (state_.load() != ShadowState::kLive) setState(ShadowState::kLive, "");
 }
 
-void ShadowSession::onBadPoll(const std::exception& e, const char* kind) {
-  const std::string reason = std::string(kind) + ": " + e.what();
-  {
-    std::lock_guard lock(mutex_);
+void ShadowSession::onBadPoll(const std::string& kind, const std::string& what) {
+  std::string reason = kind + ": " + what;
+  std::lock_guard lock(mutex_);
+  if (kind == "backoff") {
+    // Not a new failure: the one that started the backoff stays in last_error.
+    ++counters_.polls_backoff;
+    if (!last_error_.empty()) reason = last_error_;
+  } else {
     ++counters_.polls_failed;
     last_error_ = reason;
   }
   // Before the first answer the shadow is still connecting; after it, stale.
   if (state_.load() == ShadowState::kLive) setState(ShadowState::kStale, reason);
+}
+
+void ShadowSession::watchdog() {
+  std::lock_guard lock(mutex_);
+  if (state_.load() != ShadowState::kLive || !latest_) return;
+  const auto quiet = SteadyClock::now() - latest_->t;
+  if (quiet <= watchdog_) return;
+  const auto ms = [](SteadyClock::duration d) {
+    return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(d).count());
+  };
+  setState(ShadowState::kStale, "watchdog: no good sample for " + ms(quiet) + " ms (poll period " +
+                                    "plus timeout_ms: " + ms(watchdog_) + " ms)");
 }
 
 std::vector<PollSample> ShadowSession::thin(std::vector<PollSample> batch) {
@@ -124,13 +195,17 @@ std::vector<PollSample> ShadowSession::thin(std::vector<PollSample> batch) {
 void ShadowSession::carveLoop() {
   for (;;) {
     std::vector<PollSample> batch;
+    bool idle = false;  // no sample for kCarveTick
     {
       std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stopping_.load() || !queue_.empty(); });
+      idle = !wake_.wait_for(lock, kCarveTick, [&] { return stopping_.load() || !queue_.empty(); });
       if (stopping_.load()) return;
       batch.swap(queue_);
       counters_.backlog = 0;
     }
+    watchdog();
+    refreshReport(idle ? std::chrono::milliseconds(0) : kReportMaxAge);
+    if (batch.empty()) continue;
     const std::size_t polled = batch.size();
     if (batch.size() > options_.max_backlog) {
       batch = thin(std::move(batch));
@@ -144,6 +219,7 @@ void ShadowSession::carveLoop() {
     std::set<std::size_t> announced;             // episodes alarmed already
     {
       std::lock_guard lock(sim_mutex_);
+      if (options_.while_carving) options_.while_carving();
       r = carver_->carve(batch);
       cursor = carver_->cursor();
       const std::vector<check::Collision>& all = carver_->simulation().collisions();
@@ -181,6 +257,11 @@ void ShadowSession::carveLoop() {
       if (announced.count(first_new + i) == 0) raise({false, r.alarms[i], 0.0, first_new + i});
     }
     maybeLookAhead();
+    if (r.motions > 0 || !r.alarms.empty() || !r.errors.empty()) {
+      std::lock_guard lock(mutex_);
+      report_dirty_ = true;
+    }
+    refreshReport(kReportMaxAge);
     {
       std::lock_guard lock(mutex_);
       carved_ += polled;

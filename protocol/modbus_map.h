@@ -62,7 +62,8 @@ inline constexpr double kMinPollHz = 0.1;
 inline constexpr double kMaxPollHz = 1000.0;
 inline constexpr int kMinTimeoutMs = 1;
 inline constexpr int kMaxTimeoutMs = 60000;
-inline constexpr int kMaxRegistersPerRead = 125;  // Modbus function 3/4 limit
+inline constexpr int kMaxRegistersPerRead = 125;    // Modbus function 3/4 limit
+inline constexpr std::size_t kMaxHostLength = 253;  // a DNS name's limit
 
 // A decoded value that cannot be a machine value (NaN, infinity), or a value that
 // cannot be encoded in its register type.

@@ -29,7 +29,18 @@ std::string registers(const RegisterField& f) {
 }
 
 void checkSettings(const ModbusMap& map, std::vector<ModbusMapIssue>& issues) {
-  if (map.host.empty()) issues.push_back({"host", "must name the controller (not empty)"});
+  if (map.host.empty()) {
+    issues.push_back({"host", "must name the controller (not empty)"});
+  } else if (map.host.size() > kMaxHostLength) {
+    issues.push_back({"host", "is " + std::to_string(map.host.size()) +
+                                  " characters long: a host name or address has at most " +
+                                  std::to_string(kMaxHostLength)});
+  } else if (std::any_of(map.host.begin(), map.host.end(), [](char c) {
+               const auto u = static_cast<unsigned char>(c);
+               return u <= 0x20 || u == 0x7F;
+             })) {
+    issues.push_back({"host", "must be a host name or address: no spaces or control characters"});
+  }
   if (map.port < 1 || map.port > 65535) issues.push_back({"port", "must be in 1..65535"});
   if (map.unit_id < 0 || map.unit_id > 255) issues.push_back({"unit_id", "must be in 0..255"});
   if (!(map.poll_hz >= kMinPollHz && map.poll_hz <= kMaxPollHz)) {

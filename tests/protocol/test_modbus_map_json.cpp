@@ -142,6 +142,18 @@ TEST(ModbusMapJson, ErrorsNameTheField) {
   EXPECT_EQ(mapErrorOf(json::array()), "modbus: expected an object, got an array of 0");
 }
 
+TEST(ModbusMapJson, HostMustBeAHostNameOrAddress) {
+  EXPECT_EQ(mapErrorOf(with("/host", std::string("cnc\0evil", 8))),
+            "modbus.host: must be a host name or address: no spaces or control characters");
+  EXPECT_EQ(mapErrorOf(with("/host", "cnc local")),
+            "modbus.host: must be a host name or address: no spaces or control characters");
+  EXPECT_EQ(mapErrorOf(with("/host", std::string(100'000, 'a'))),
+            "modbus.host: is 100000 characters long: a host name or address has at most 253");
+  EXPECT_EQ(mapErrorOf(with("/host", "")), "modbus.host: must name the controller (not empty)");
+  EXPECT_EQ(mapErrorOf(with("/host", std::string(253, 'a'))), "(accepted)");
+  EXPECT_EQ(mapErrorOf(with("/host", "fe80::1")), "(accepted)");
+}
+
 TEST(ModbusMapJson, JointNamesMustBeTheMachines) {
   const kin::Machine bc = kin::presets::bcHeadTable();  // X Y Z B C
   EXPECT_EQ(mapErrorOf(example(), &bc),

@@ -209,6 +209,47 @@ TEST(ShadowHttp, BadRequestsSayWhatAndWhere) {
   EXPECT_EQ(s["state"], "connecting");
   EXPECT_THAT(s["polls"]["last_error"].get<std::string>(), HasSubstr("connect"));
   EXPECT_EQ(cell.http->Delete(path.c_str())->status, 200);
+
+  // modbus.host: a NUL or 100 KB is no host name.
+  j = good;
+  j["modbus"]["host"] = std::string("127.0.0.1\0x", 11);
+  r = post(j);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(body(r)["error"]["field"], "modbus.host");
+  j["modbus"]["host"] = std::string(100'000, 'h');
+  r = post(j);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(body(r)["error"]["field"], "modbus.host");
+}
+
+// A client that lost an id finds it in the list; DELETE of a shadow whose
+// controller accepts and never answers (timeout_ms 60000) answers at once.
+TEST(ShadowHttp, ListFindsShadowsAndDeleteDoesNotWaitForASilentPeer) {
+  Cell cell;
+  modbus_test::RawPeer silent([](int, const modbus_test::Bytes&, int) { return true; });
+  nlohmann::json request = requestFor("crash-3axis", silent.port());
+  request["modbus"]["timeout_ms"] = 60000;
+  const auto r = cell.http->Post("/api/v1/shadows", request.dump(), "application/json");
+  ASSERT_EQ(r->status, 201);
+  const std::string id = body(r)["id"];
+  const nlohmann::json list = body(cell.http->Get("/api/v1/shadows"));
+  ASSERT_EQ(list["shadows"].size(), 1u);
+  EXPECT_EQ(list["shadows"][0]["id"], id);
+  EXPECT_EQ(list["shadows"][0]["state"], "connecting");
+  EXPECT_EQ(list["shadows"][0]["port"], silent.port());
+  while (silent.connections() < 1) std::this_thread::sleep_for(2ms);
+  std::this_thread::sleep_for(100ms);  // the poll is blocked on the silent peer
+  const std::string path = "/api/v1/shadows/" + id;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto stopped = cell.http->Delete(path.c_str());
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_EQ(stopped->status, 200);
+  EXPECT_LT(ms, 1000);  // the old code: 59 s
+  EXPECT_EQ(body(stopped)["state"], "stopped");
+  EXPECT_EQ(body(cell.http->Get("/api/v1/shadows"))["shadows"][0]["state"], "stopped");
+  EXPECT_EQ(cell.http->Delete(path.c_str())->status, 204);
+  EXPECT_TRUE(body(cell.http->Get("/api/v1/shadows"))["shadows"].empty());
 }
 
 }  // namespace
