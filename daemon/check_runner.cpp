@@ -61,6 +61,12 @@ check::SimulationOptions simulationOptions(const protocol::JobOptions& o) {
   return s;
 }
 
+void requireStockFits(const protocol::Job& job) {
+  const std::string problem = check::Simulation::stockProblem(*job.machine, job.tools, job.stock,
+                                                              simulationOptions(job.options));
+  if (!problem.empty()) throw protocol::FieldError("options.density", problem);
+}
+
 LoadedJob loadCheckedJobFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw protocol::FieldError("(file)", "cannot open " + path.string());
@@ -102,6 +108,11 @@ check::Report runCheckJob(const LoadedJob& loaded, const CheckControls& controls
   const protocol::Job& job = loaded.job;
   std::unique_ptr<kin::Kinematics> kin;
   std::unique_ptr<check::Simulation> sim;
+  try {
+    requireStockFits(job);
+  } catch (const protocol::FieldError& e) {
+    return errorReport({e.message(), e.field(), "", 0, 0, ""});
+  }
   try {
     kin = std::make_unique<kin::Kinematics>(*job.machine);
     check::SimulationOptions options = simulationOptions(job.options);

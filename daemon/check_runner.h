@@ -34,6 +34,11 @@ std::vector<std::unique_ptr<geom::LineSolid>> fixtureSolids(const protocol::Job&
 // The simulation's options from the job's.
 check::SimulationOptions simulationOptions(const protocol::JobOptions& options);
 
+// Throws protocol::FieldError at `options.density` when the engine cannot hold the
+// job's stock at its density (check::Simulation::stockProblem): a service refuses
+// such a job when it is submitted, not when it runs.
+void requireStockFits(const protocol::Job& job);
+
 // Loads a job file: the JSON schema first (errors name the JSON path), then the
 // strict codec and the machine and program files. Throws protocol::FieldError.
 LoadedJob loadCheckedJobFile(const std::filesystem::path& path);

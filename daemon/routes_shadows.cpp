@@ -2,6 +2,7 @@
 
 #include <httplib.h>
 
+#include "daemon/check_runner.h"
 #include "daemon/http_errors.h"
 #include "daemon/openapi_parts.h"
 #include "protocol/machine_json.h"
@@ -48,8 +49,9 @@ std::unique_ptr<ShadowSession> makeSession(const nlohmann::json& body, JobStore&
     return out;
   };
   try {
-    return std::make_unique<ShadowSession>(shadow::ShadowRegistry::newId(),
-                                           shadow::shadowSpecFromJson(body, lookup));
+    shadow::ShadowSpec spec = shadow::shadowSpecFromJson(body, lookup);
+    cli::requireStockFits(spec.job);
+    return std::make_unique<ShadowSession>(shadow::ShadowRegistry::newId(), std::move(spec));
   } catch (const protocol::FieldError& e) {
     throw badField(e.field(), e.message());
   } catch (const gcode::GcodeError& e) {

@@ -110,6 +110,7 @@ AcceptedJob acceptJob(
   cli::LoadedJob loaded;
   try {
     loaded.job = protocol::jobFromJson(doc);
+    cli::requireStockFits(loaded.job);
   } catch (const protocol::FieldError& e) {
     throw fieldError(e.field(), e.message());
   }

@@ -256,6 +256,27 @@ TEST(AcceptJob, DryInterpretationStopsAtItsBudget) {
   }
 }
 
+// A stock the engine cannot hold at the job's density is refused when it is posted,
+// at options.density, not accepted and failed when it runs.
+TEST(AcceptJob, AStockTooFineForTheEngineIsRefusedAtTheDensity) {
+  const auto noMachines = [](const std::string&) -> std::optional<nlohmann::json> {
+    return std::nullopt;
+  };
+  nlohmann::json job = tinyJob();
+  job["stock"] = {{"box", {{"min", {0, 0, -5}}, {"max", {1500, 20, 0}}}}};
+  job["options"] = {{"density", 1000}};  // 1.5 million grid cubes along x
+  try {
+    service::acceptJob(job, 1u << 20, noMachines, std::chrono::milliseconds(200));
+    FAIL() << "accepted";
+  } catch (const service::HttpError& e) {
+    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(e.extra().value("field", ""), "options.density");
+    EXPECT_NE(std::string(e.what()).find("lower the density"), std::string::npos) << e.what();
+  }
+  job["options"] = {{"density", 10}};
+  EXPECT_NO_THROW(service::acceptJob(job, 1u << 20, noMachines, std::chrono::milliseconds(200)));
+}
+
 TEST_F(JobsApi, UnknownIdsAre404AndPathsNeverReachFiles) {
   RunningService svc(config());
   auto cli = svc.client();
