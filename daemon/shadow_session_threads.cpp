@@ -160,8 +160,11 @@ void ShadowSession::onBadPoll(const std::string& kind, const std::string& what) 
     ++counters_.polls_failed;
     last_error_ = reason;
   }
-  // Before the first answer the shadow is still connecting; after it, stale.
-  if (state_.load() == ShadowState::kLive) setState(ShadowState::kStale, reason);
+  // Before the first answer the shadow is still connecting; after it, stale. An
+  // unknown tool is an answer: the controller is there, the shadow is blind.
+  const ShadowState now = state_.load();
+  if (now == ShadowState::kLive || (now == ShadowState::kConnecting && kind == "unknown_tool"))
+    setState(ShadowState::kStale, reason);
 }
 
 void ShadowSession::watchdog() {
