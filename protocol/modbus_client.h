@@ -1,6 +1,7 @@
 #pragma once
 // Reading a controller's registers over Modbus TCP. `RegisterSource` is what a
-// shadow polls; `ModbusTcpClient` is its libmodbus implementation.
+// shadow polls; `ModbusTcpClient` implements it, framing Modbus TCP itself (libmodbus
+// names the errors).
 //
 // Failures are ModbusError, never a crash, a hang beyond timeout_ms or a SIGPIPE.
 // timeout_ms bounds a whole call (read(): connecting when needed and every read of
