@@ -118,7 +118,8 @@ void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
   const int g7 = w.g[kGCutterComp];
   reject('D', !isCompOn(g7) && w.g[kGSpindleMode] != 960,
          "D word with no G41, G41.1, G42, G42.1, or G96 to use it");
-  reject('E', true, "E word with no G76, M66, M67 or M68 to use it");
+  const int m_io = w.m[kMIo];
+  reject('E', m_io != 660, "E word with no G76, M66, M67 or M68 to use it");
   const int g8 = w.g[kGToolLength];
   reject('H', g8 != 430 && g8 != 432 && g8 != 434, "H word with no G43 or G76 to use it");
   const bool ij_used = arc || motion == 50 || motion == 51 || motion == 870 || g10;
@@ -126,13 +127,14 @@ void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
   reject('J', !ij_used, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it");
   reject('K', !arc && motion != 330 && motion != 331 && motion != 870,
          "K word with no G2, G3, G33, G33.1, G76, or G87 to use it");
-  reject('L', !cycle && motion != 52 && !g10 && !isCompOn(g7),
+  reject('L', !cycle && motion != 52 && !g10 && !isCompOn(g7) && m_io != 660,
          "L word with no G10, cutter compensation, canned cycle, digital/analog input, or NURBS "
          "code");
   const int m_override = w.m[kMOverride];
   const bool p_used = g10 || g0 == 40 || w.g[kGPathMode] == 640 || arc || motion == 50 ||
-                      motion == 52 || motion == 820 || motion == 860 || motion == 880 ||
-                      motion == 890 || (m_override >= 500 && m_override <= 530);
+                      motion == 52 || motion == 740 || motion == 820 || motion == 840 ||
+                      motion == 860 || motion == 880 || motion == 890 ||
+                      (m_override >= 500 && m_override <= 530) || m_io >= 0;
   reject('P', !p_used,
          "P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 "
          "M63 M64 M65 M66 or user M code to use it");
@@ -145,7 +147,7 @@ void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
   }
   reject('Q',
          motion != 830 && motion != 730 && motion != 50 && !g10 && w.m[kMToolChange] != 610 &&
-             w.g[kGPathMode] != 640,
+             w.g[kGPathMode] != 640 && m_io != 660,
          "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code that uses "
          "it");
   reject('R', !arc && !cycle && !g10 && g7 != 411 && g7 != 421,
@@ -164,6 +166,12 @@ void BlockExecutor::checkWordUse(Step& st) {
   const int g8 = w.g[kGToolLength];
   const bool nonmodal_axes = usesAxesNonModal(g0) || g8 == 431 || g8 == 432;
   const int explicit_motion = w.g[kGMotion];
+  if (w.hasPolar()) {
+    if (nonmodal_axes) st.fail("Polar coordinates can only be used for motion", w.polar_column);
+    if (w.has('X')) st.failWord('X', "Cannot specify both polar coordinate and X word");
+    if (w.has('Y')) st.failWord('Y', "Cannot specify both polar coordinate and Y word");
+    if (g0 == 530) st.fail("Cannot use polar coordinates with G53", w.polar_column);
+  }
   if (explicit_motion >= 0) {
     if (explicit_motion == 800 && w.hasAxis() && !nonmodal_axes)
       st.fail("Cannot use axis values with G80", w.axis_column);
@@ -198,6 +206,7 @@ void BlockExecutor::runModes(Step& st) {
   if (st.w.has('S')) st.s.speed = st.w.get('S');
   setTool(st);
   setSpindleAndCoolant(st);
+  checkIo(st);
   if (st.w.g[kGNonModal] == 40) {
     if (!st.w.has('P')) st.fail("Dwell time missing with G4", st.w.g_column[kGNonModal]);
     if (st.w.get('P') < 0) st.failWord('P', "Negative dwell time with G4");
@@ -217,6 +226,37 @@ void BlockExecutor::runModes(Step& st) {
   if (st.w.g[kGRetract] >= 0) st.s.retract_to_r = st.w.g[kGRetract] == 990;
 }
 
+// M62..M65 (digital outputs) and M66 (wait on an input): no motion and no
+// event, only LinuxCNC's checks of their words.
+void BlockExecutor::checkIo(Step& st) {
+  const BlockWords& w = st.w;
+  const int m = w.m[kMIo];
+  if (m < 0) return;
+  const int column = w.m_column[kMIo];
+  if (m != 660) {
+    if (!w.has('P')) st.fail("No valid P word with M" + std::to_string(m / 10), column);
+    return;
+  }
+  // LinuxCNC rounds P, E, L and Q to integers here (floor(x + 0.5)).
+  auto rounded = [&](char c) { return static_cast<long>(std::floor(w.get(c) + 0.5)); };
+  if (w.has('L')) {
+    const double l = w.get('L');
+    if (l < 0) st.failWord('L', "Negative l word used");
+    if (l != std::floor(l)) st.failWord('L', "Non integer value for integer");
+  }
+  if (w.has('P') && w.has('E'))
+    st.fail("Invalid to select both a digital and an analog input with M66", column);
+  const long wait_type = w.has('L') ? rounded('L') : 0;
+  const long timeout = w.has('Q') ? rounded('Q') : -1;
+  if (wait_type > 0 && timeout <= 0)
+    st.fail("Zero timeout with wait type != immediate return", column);
+  if (w.has('E') && wait_type != 0)
+    st.fail("Can't select analog input with wait type != immediate return", column);
+  if ((w.has('P') && rounded('P') < 0) || (w.has('E') && rounded('E') < 0) ||
+      (!w.has('P') && !w.has('E')))
+    st.fail("Need to have either a valid P or a valid E word with M66", column);
+}
+
 void BlockExecutor::runNonModal(Step& st) {
   switch (st.w.g[kGNonModal]) {
     case 100:
@@ -228,6 +268,9 @@ void BlockExecutor::runNonModal(Step& st) {
       break;
     case 281:
     case 301: {
+      if (st.s.comp_side != CompSide::kOff)
+        st.fail("Cannot set reference point with cutter compensation in effect",
+                st.w.g_column[kGNonModal]);
       AxisValues& stored = st.w.g[kGNonModal] == 281 ? st.s.g28 : st.s.g30;
       stored = toMachine(st.s, st.s.current);
       break;

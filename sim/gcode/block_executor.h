@@ -61,6 +61,7 @@ class BlockExecutor {
   void executeSteps(Step& st);
   void checkWordUse(Step& st);
   void runModes(Step& st);
+  void checkIo(Step& st);
   void runNonModal(Step& st);
   void runStop(Step& st);
   void emitEvent(Step& st, Event e);
@@ -83,6 +84,7 @@ class BlockExecutor {
   // Motion (block_motion.cpp).
   void runMotion(Step& st);
   AxisValues findEnd(const Step& st) const;
+  void polarEnd(const Step& st, AxisValues& end) const;
   FeedInfo feedFor(const Step& st, double length_mm, bool rotary_only) const;
   void straight(Step& st, int motion, const AxisValues& end);
   void arc(Step& st, int motion, const AxisValues& end);

@@ -135,6 +135,7 @@ void BlockExecutor::setCutterComp(Step& st) {
       const double d = st.w.get('D');
       if (d < 0 || d != std::floor(d)) st.failWord('D', "Negative or non-integer D word used");
       tool = static_cast<int>(d);
+      if (tool == 0) tool = s.tool;  // D0: LinuxCNC's pocket 0, the tool in the spindle
     }
     if (tool != 0) {
       const ToolEntry* entry = config_.tools.find(tool);
@@ -174,7 +175,8 @@ void BlockExecutor::setToolLength(Step& st) {
   auto hWord = [&]() {
     const double h = st.w.get('H');
     if (h < 0 || h != std::floor(h)) st.failWord('H', "Negative or non-integer H word used");
-    return static_cast<int>(h);
+    // H0 is LinuxCNC's pocket 0: the tool in the spindle.
+    return h == 0 ? s.tool : static_cast<int>(h);
   };
   switch (g) {
     case 430: {

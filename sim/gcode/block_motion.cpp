@@ -1,6 +1,7 @@
 // G0 G1 G2 G3 and the dispatch to canned cycles and cutter compensation.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "sim/gcode/arc_math.h"
 #include "sim/gcode/block_step.h"
@@ -73,7 +74,36 @@ AxisValues BlockExecutor::findEnd(const Step& st) const {
     const double v = isRotary(a) ? w.get(c) : st.len(w.get(c));
     end[a] = s.incremental ? end[a] + v : v;
   }
+  if (w.hasPolar()) polarEnd(st, end);
   return end;
+}
+
+// @ (radius) and ^ (angle, degrees) give X and Y about the program's XY
+// origin. G90: a word left out keeps the current radius or angle; G91: each is
+// added to the current one. `end` holds the point the move starts from.
+void BlockExecutor::polarEnd(const Step& st, AxisValues& end) const {
+  const BlockWords& w = st.w;
+  const double x = end[kX], y = end[kY];
+  const bool at_origin = x == 0.0 && y == 0.0;
+  double radius = std::hypot(x, y);
+  double angle = std::atan2(y, x);
+  const double word_angle = w.angle * std::numbers::pi / 180.0;
+  if (st.s.incremental) {
+    if (at_origin)
+      st.fail(w.has_angle ? "G91 motion with polar coordinates is indeterminate when at the origin"
+                          : "Incremental motion with polar coordinates is indeterminate when at "
+                            "the origin",
+              w.polar_column);
+    if (w.has_radius) radius += st.len(w.radius);
+    if (w.has_angle) angle += word_angle;
+  } else {
+    if (!w.has_angle && at_origin)
+      st.fail("Must specify angle in polar coordinate if at the origin", w.polar_column);
+    if (w.has_radius) radius = st.len(w.radius);
+    if (w.has_angle) angle = word_angle;
+  }
+  end[kX] = radius * std::cos(angle);
+  end[kY] = radius * std::sin(angle);
 }
 
 FeedInfo BlockExecutor::feedFor(const Step& st, double length, bool rotary_only) const {
@@ -236,7 +266,7 @@ void BlockExecutor::arc(Step& st, int motion, const AxisValues& end) {
     o2 = w.has(l2) ? st.lenWord(l2) : 0.0;
   } else {
     const char a1 = kAxisLetters[axes.first], a2 = kAxisLetters[axes.second];
-    if (!w.has(a1) && !w.has(a2)) {
+    if (!w.has(a1) && !w.has(a2) && !(w.hasPolar() && s.plane == Plane::kXY)) {
       const char lo = std::min(a1, a2), hi = std::max(a1, a2);
       static const char* kPlane[] = {"XY", "XZ", "YZ"};
       st.fail(std::string(1, lo) + " and " + hi + " words missing for arc in " +

@@ -61,7 +61,8 @@ void BlockExecutor::spline(Step& st, int motion) {
 
 // A block under G5.2: the first one starts the curve at the current point
 // (its weight is P when the block has no X Y), every block with X Y adds a
-// control point of weight P, L (> 3) sets the order.
+// control point of weight P (only the first block may leave it out), L (> 3)
+// sets the order.
 void BlockExecutor::nurbsPoint(Step& st) {
   InterpState& s = st.s;
   const BlockWords& w = st.w;
@@ -69,11 +70,15 @@ void BlockExecutor::nurbsPoint(Step& st) {
   if (w.has('X') != w.has('Y'))
     st.fail("You must specify both X and Y coordinates for Control Points", column);
   const bool xy = w.has('X');
-  if (s.motion != 52) clearNurbs();
+  const bool first_block = s.motion != 52;
+  if (first_block) clearNurbs();
   const double p = w.has('P') ? w.get('P') : -1.0;
   if (!xy && p > 0 && !nurbs_.empty())
     st.fail("Can specify P without X and Y only for the first control point", column);
-  if (xy && p <= 0) st.fail("Must specify positive weight P for every Control Point", column);
+  // As rs274: the block that starts the curve is not checked (its point then
+  // gets weight 1 here); every later point needs P > 0.
+  if (xy && p <= 0 && !first_block)
+    st.fail("Must specify positive weight P for every Control Point", column);
   if (s.feed_mode == FeedMode::kUnitsPerMinute && s.feed == 0.0)
     st.fail("Cannot make a NURBS with 0 feedrate", column);
   for (char c : {'Z', 'A', 'B', 'C', 'U', 'V', 'W'})
@@ -91,7 +96,7 @@ void BlockExecutor::nurbsPoint(Step& st) {
   }
   if (xy) {
     const AxisValues end = findEnd(st);
-    nurbs_.push_back({end[kX], end[kY], p});
+    nurbs_.push_back({end[kX], end[kY], p > 0 ? p : 1.0});
   }
 }
 

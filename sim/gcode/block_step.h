@@ -27,7 +27,7 @@ struct BlockExecutor::Step {
 };
 
 inline bool isCycle(int motion) {
-  return motion == 730 || (motion >= 810 && motion <= 890);
+  return motion == 730 || motion == 740 || (motion >= 810 && motion <= 890);
 }
 
 }  // namespace mdhd::gcode

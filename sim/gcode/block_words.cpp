@@ -35,8 +35,14 @@ void addG(const Block& block, const Word& w, BlockWords& out) {
   const int c = code10(w.value);
   const CodeInfo* info = c < 0 ? nullptr : findGCode(c);
   if (!info) failAt(block, w.column, "Unknown g code used");
-  if (out.g[info->group] != -1) failAt(block, w.column, "Two G codes used from same modal group");
-  out.g[info->group] = c;
+  int& slot = out.g[info->group];
+  if (info->group == kGMotion && slot != -1 && (slot == 800 || c == 800)) {
+    // LinuxCNC: G80 beside another motion code is ignored (in either order).
+    if (c == 800) return;
+  } else if (slot != -1) {
+    failAt(block, w.column, "Two G codes used from same modal group");
+  }
+  slot = c;
   out.g_column[info->group] = w.column;
 }
 
@@ -65,10 +71,19 @@ void readBlockWords(const Block& block, unsigned axis_mask, BlockWords& out) {
   out.mist_and_flood = false;
   out.letters = 0;
   out.axis_column = 0;
+  out.has_radius = out.has_angle = false;
+  out.polar_column = 0;
   for (const Word& w : block.words) {
     const char c = w.letter;
     if (c == '$') {  // spindle select: this machine has one spindle, $0
       if (w.value != 0.0) failAt(block, w.column, "Invalid spindle ($) number");
+      continue;
+    }
+    if (c == '@' || c == '^') {
+      (c == '@' ? out.has_radius : out.has_angle) = true;
+      (c == '@' ? out.radius : out.angle) = w.value;
+      if (out.polar_column == 0) out.polar_column = w.column;
+      if (out.axis_column == 0) out.axis_column = w.column;
       continue;
     }
     if (c < 'A' || c > 'Z') failAt(block, w.column, std::string("Bad character '") + c + "' used");

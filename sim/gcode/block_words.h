@@ -20,7 +20,13 @@ struct BlockWords {
   std::uint32_t letters = 0;    // bit (c - 'A') for each letter other than G and M
   std::array<double, 26> value{};
   std::array<int, 26> column{};
-  int axis_column = 0;  // column of the first axis word (X..W), 0: none
+  int axis_column = 0;  // column of the first axis word (X..W, @, ^), 0: none
+  // Polar coordinates: @ radius, ^ angle (degrees). As rs274, a repeated one
+  // is no error: the last one counts.
+  bool has_radius = false, has_angle = false;
+  double radius = 0.0, angle = 0.0;
+  int polar_column = 0;  // column of the first @ or ^, 0: none
+  bool hasPolar() const { return polar_column != 0; }
 
   bool has(char c) const { return (letters >> (c - 'A')) & 1u; }
   double get(char c) const { return value[c - 'A']; }

@@ -1,4 +1,4 @@
-// Canned cycles G73 G81..G89 with G98/G99 and L repeats, in all three planes,
+// Canned cycles G73 G74 G81..G89 with G98/G99 and L repeats, in all three planes,
 // move for move as LinuxCNC 2.9 emits them.
 #include <cmath>
 
@@ -66,6 +66,9 @@ void BlockExecutor::cannedCycle(Step& st, int motion) {
   const char a_letter = kAxisLetters[axes.first], b_letter = kAxisLetters[axes.second];
   double aa = s.current[axes.first], bb = s.current[axes.second];
   double aa_inc = 0.0, bb_inc = 0.0, r, cc;
+  if (w.hasPolar() && (s.incremental || s.plane != Plane::kXY))
+    st.fail("Polar coordinates in a canned cycle are supported only in G90 and G17",
+            w.polar_column);
   if (s.incremental) {
     if (w.has(a_letter)) aa_inc = st.lenWord(a_letter);
     if (w.has(b_letter)) bb_inc = st.lenWord(b_letter);
@@ -74,6 +77,12 @@ void BlockExecutor::cannedCycle(Step& st, int motion) {
   } else {
     if (w.has(a_letter)) aa = st.lenWord(a_letter);
     if (w.has(b_letter)) bb = st.lenWord(b_letter);
+    if (w.hasPolar()) {
+      AxisValues end = s.current;
+      polarEnd(st, end);
+      aa = end[kX];
+      bb = end[kY];
+    }
     r = r_word;
     cc = c_word;
   }
@@ -92,11 +101,13 @@ void BlockExecutor::cannedCycle(Step& st, int motion) {
     if (q < 0) q = s.cycle.q;
     if (q <= 0) st.failWord('Q', "Negative or zero Q value used");
   }
-  if ((motion == 840 || motion == 860 || motion == 870 || motion == 880) &&
+  if ((motion == 740 || motion == 840 || motion == 860 || motion == 870 || motion == 880) &&
       s.spindle == SpindleState::kOff)
     st.fail("Spindle not turning in G" + std::to_string(motion / 10), column);
   if (motion == 840 && s.spindle != SpindleState::kClockwise)
     st.fail("Spindle turning counterclockwise in G84", column);
+  if (motion == 740 && s.spindle != SpindleState::kCounterClockwise)
+    st.fail("Spindle turning clockwise in G74", column);
   double ci = s.cycle.i, cj = s.cycle.j, ck = s.cycle.k;
   if (motion == 870) {  // back boring: I J offsets (plane axes), K top of counterbore
     const char l1 = s.plane == Plane::kXY ? 'I' : (s.plane == Plane::kXZ ? 'K' : 'J');
@@ -166,13 +177,16 @@ void BlockExecutor::cannedCycle(Step& st, int motion) {
         cycleMove(st, MotionType::kRapid, aa, bb, clear);
         break;
       }
-      case 840:
+      case 740:  // G74: G84 with the spindle turning the other way
+      case 840: {
+        const bool right = motion == 840;
         cycleMove(st, MotionType::kFeed, aa, bb, cc);
-        spindleEvent(SpindleState::kCounterClockwise);
+        spindleEvent(right ? SpindleState::kCounterClockwise : SpindleState::kClockwise);
         if (p > 0) dwell(p);
         cycleMove(st, MotionType::kFeed, aa, bb, clear);
-        spindleEvent(SpindleState::kClockwise);
+        spindleEvent(right ? SpindleState::kClockwise : SpindleState::kCounterClockwise);
         break;
+      }
       case 850:
         cycleMove(st, MotionType::kFeed, aa, bb, cc);
         cycleMove(st, MotionType::kFeed, aa, bb, r);

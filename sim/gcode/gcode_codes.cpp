@@ -55,6 +55,7 @@ constexpr std::array kGCodes{
     CodeInfo{'G', 611, kGPathMode, false, "exact stop"},
     CodeInfo{'G', 640, kGPathMode, false, "blending"},
     CodeInfo{'G', 730, kGMotion, true, "chip-break drilling cycle"},
+    CodeInfo{'G', 740, kGMotion, true, "left-hand tapping cycle"},
     CodeInfo{'G', 800, kGMotion, false, "cancel canned cycle"},
     CodeInfo{'G', 810, kGMotion, true, "drilling cycle"},
     CodeInfo{'G', 820, kGMotion, true, "drilling cycle with dwell"},
@@ -102,6 +103,12 @@ constexpr std::array kMCodes{
     CodeInfo{'M', 530, kMOverride, false, "feed stop control"},
     CodeInfo{'M', 600, kMStop, false, "pallet change pause"},
     CodeInfo{'M', 610, kMToolChange, false, "set current tool"},
+    // Digital outputs and waiting on an input: no motion (a verifier has no I/O).
+    CodeInfo{'M', 620, kMIo, false, "digital output on, synchronised with motion"},
+    CodeInfo{'M', 630, kMIo, false, "digital output off, synchronised with motion"},
+    CodeInfo{'M', 640, kMIo, false, "digital output on, immediately"},
+    CodeInfo{'M', 650, kMIo, false, "digital output off, immediately"},
+    CodeInfo{'M', 660, kMIo, false, "wait on input"},
 };
 
 template <std::size_t N>

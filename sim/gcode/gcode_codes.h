@@ -9,7 +9,7 @@ namespace mdhd::gcode {
 // G code modal groups (index into BlockWords::g).
 enum GGroup : int {
   kGNonModal = 0,      // G4 G5.3 G10 G28 G28.1 G30 G30.1 G53 G92 G92.1 G92.2 G92.3
-  kGMotion = 1,        // G0 G1 G2 G3 G5 G5.1 G5.2 G33 G33.1 G38.x G73 G80 G81..G89
+  kGMotion = 1,        // G0 G1 G2 G3 G5 G5.1 G5.2 G33 G33.1 G38.x G73 G74 G80 G81..G89
   kGPlane = 2,         // G17 G18 G19
   kGDistance = 3,      // G90 G91
   kGArcDistance = 4,   // G90.1 G91.1
@@ -31,6 +31,7 @@ enum MGroup : int {
   kMSpindle,     // M3 M4 M5
   kMCoolant,     // M7 M8 M9 (M7 and M8 may share a line)
   kMOverride,    // M48 .. M53
+  kMIo,          // M62 .. M66 (digital outputs, wait on input)
   kMGroupCount,
 };
 

@@ -10,10 +10,11 @@ namespace mdhd::gcode {
 namespace {
 
 // Letters that make words: A..Z without N and O (those are the reader's),
-// plus LinuxCNC's '$' (spindle select, e.g. `M3 $0 S1`).
+// plus LinuxCNC's '$' (spindle select, e.g. `M3 $0 S1`) and its polar
+// coordinates '@' (radius) and '^' (angle).
 constexpr std::array<bool, 256> makeWordLetters() {
   std::array<bool, 256> table{};
-  for (char c : std::string_view("abcdefghijklmpqrstuvwxyz$"))
+  for (char c : std::string_view("abcdefghijklmpqrstuvwxyz$@^"))
     table[static_cast<unsigned char>(c)] = true;
   return table;
 }

@@ -66,6 +66,83 @@ TEST(InterpreterErrors, UnknownCodesAndMissingAxes) {
   EXPECT_STREQ(r.error->what(), "Cannot use axis values with G80");
 }
 
+// Error texts as rs274 prints them (LinuxCNC 2.9), checked against it by hand:
+// the oracle traces stop at a program's first error.
+void expectError(const std::string& program, const char* message, int line = 2) {
+  const Result r = run(program);
+  ASSERT_TRUE(r.error) << program;
+  EXPECT_STREQ(r.error->what(), message) << program;
+  EXPECT_EQ(r.error->line(), line) << program;
+}
+
+TEST(InterpreterErrors, DigitalIoWords) {
+  expectError("G21\nM62\n", "No valid P word with M62");
+  expectError("G21\nM65\n", "No valid P word with M65");
+  expectError("G21\nM62 P0 M63 P1\n", "Two M codes used from same modal group");
+  expectError("G21\nM62 P0 Q1\n",
+              "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code that "
+              "uses it");
+  expectError("G21\nM66\n", "Need to have either a valid P or a valid E word with M66");
+  expectError("G21\nM66 P-1\n", "Need to have either a valid P or a valid E word with M66");
+  expectError("G21\nM66 P0 E0\n", "Invalid to select both a digital and an analog input with M66");
+  expectError("G21\nM66 P0 L1\n", "Zero timeout with wait type != immediate return");
+  expectError("G21\nM66 P0 L2 Q0.4\n", "Zero timeout with wait type != immediate return");
+  expectError("G21\nM66 E0 L1 Q1\n",
+              "Can't select analog input with wait type != immediate return");
+  expectError("G21\nM66 P0 L-1\n", "Negative l word used");
+  expectError("G21\nM66 P0 L0.5\n", "Non integer value for integer");
+  // Accepted, and nothing moves.
+  for (const char* ok : {"M62 P-1\n", "M64 P1.5\n", "M66 P0 L1 Q1\n", "M66 P0 L5 Q1\n",
+                         "M66 P0 Q-1\n", "M66 E0 L0\n", "G1 X1 F100 M66 P0\n"}) {
+    const Result r = run(ok);
+    EXPECT_FALSE(r.error) << ok << (r.error ? r.error->what() : "");
+  }
+}
+
+TEST(InterpreterErrors, LeftHandTappingNeedsTheSpindleCounterclockwise) {
+  expectError("G21 G0 Z2 F100\nG74 X1 R1 Z-1\n", "Spindle not turning in G74");
+  expectError("G21 G0 Z2 F100 S100 M3\nG74 X1 R1 Z-1\n", "Spindle turning clockwise in G74");
+  const Result r = run("G21 G0 Z2 F100 S100 M4\nG74 X1 R1 Z-1 P0.5\nG80\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 5u);  // Z2; over, down to R, feed in, feed out to the start level
+  expectEnd(r.motions[3], 1, 0, -1);
+  expectEnd(r.motions[4], 1, 0, 2);
+}
+
+TEST(InterpreterErrors, G80BesideAnotherMotionCodeIsIgnored) {
+  expectError("G21\nG0 G80 G1 X1\n", "Two G codes used from same modal group");
+  expectError("G21\nG80 G80 X1\n", "Cannot use axis values with G80");
+  const Result r = run("G21 F100\nG1 G80 X1\nG80 G0 X2\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 2u);
+  EXPECT_EQ(r.motions[0].type, MotionType::kFeed);
+  EXPECT_EQ(r.motions[1].type, MotionType::kRapid);
+}
+
+TEST(InterpreterErrors, ReferencePointWithCutterComp) {
+  expectError("G21 F100\nG41 D1 G1 X10\nG30.1\n",
+              "Cannot set reference point with cutter compensation in effect", 3);
+}
+
+TEST(InterpreterErrors, PolarCoordinates) {
+  expectError("G21\nG0 X1 @5 ^0\n", "Cannot specify both polar coordinate and X word");
+  expectError("G21\nG0 Y1 @5 ^0\n", "Cannot specify both polar coordinate and Y word");
+  expectError("G21\nG53 G0 @5 ^0\n", "Cannot use polar coordinates with G53");
+  expectError("G21\nG28 @5\n", "Polar coordinates can only be used for motion");
+  expectError("G21\nG92 @1\n", "Polar coordinates can only be used for motion");
+  expectError("G21\nG0 @5\n", "Must specify angle in polar coordinate if at the origin");
+  expectError("G21\nG91 G0 @1\n",
+              "Incremental motion with polar coordinates is indeterminate when at the origin");
+  expectError("G21\nG91 G0 ^10\n",
+              "G91 motion with polar coordinates is indeterminate when at the origin");
+  expectError("G21\n@5 ^0\n", "Cannot use axis values without a g code that uses them");
+  // A repeated @ or ^ is no error in rs274: the last one counts.
+  const Result r = run("G21\nG0 @5 ^30 @6\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 1u);
+  expectEnd(r.motions[0], 6 * std::cos(M_PI / 6), 3, 0);
+}
+
 TEST(InterpreterErrors, RejectedBlockChangesNothing) {
   // G20 and G91 come before the failing arc in execution order; none may stick.
   RecordingSink sink;
