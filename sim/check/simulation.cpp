@@ -290,8 +290,11 @@ void Simulation::checkLimits(const gcode::Motion& m, const kin::JointPath& path)
 }
 
 geom::SweptVolume Simulation::sweep(const Step& step, const geom::ToolPart& part, double f) const {
-  return sweep(step.a.pose,
-               f >= 1.0 ? step.b.pose : geom::interpolatePose(step.a.pose, step.b.pose, f), part);
+  if (f >= 1.0) return sweep(step.a.pose, step.b.pose, part);
+  // The pose on the path, where entry() reports the contact: a turn's chord pose lies
+  // inside the arc (a table turn's first contact came up to a step's chord early).
+  const double s = step.a.s + f * (step.b.s - step.a.s);
+  return sweep(step.a.pose, toolPoseAt(step.path, step.path.at(s)), part);
 }
 
 geom::SweptVolume Simulation::sweep(const geom::ToolPose& a, const geom::ToolPose& end,
