@@ -69,6 +69,7 @@ class BlockExecutor {
   // Modes and settings (block_modes.cpp).
   void setFeedMode(Step& st);
   void setTool(Step& st);
+  void resyncFromMachine(InterpState& s) const;
   void setSpindleAndCoolant(Step& st);
   void setPlane(Step& st);
   void setUnits(Step& st);

@@ -21,6 +21,15 @@ void BlockExecutor::setFeedMode(Step& st) {
   st.s.feed_word = 0.0;
 }
 
+// LinuxCNC re-reads its position from the machine after M6 and M61 (and a
+// probe move), and nowhere else. Where the interpreter's point and the machine
+// disagree (a bare G40 leaves the tool centre off the programmed point), the
+// machine wins: an axis a later move leaves out keeps the tool-centre value.
+void BlockExecutor::resyncFromMachine(InterpState& s) const {
+  s.current = toProgram(s, out_.machine());
+  s.programmed = s.current;
+}
+
 void BlockExecutor::setTool(Step& st) {
   InterpState& s = st.s;
   if (st.w.has('T')) {
@@ -45,6 +54,7 @@ void BlockExecutor::setTool(Step& st) {
     // The machine does not move: LinuxCNC re-reads its position after M6, so a
     // G43 of the same block changes the program Z, not the machine Z (rs274's
     // standalone canon differs, see the oracle test).
+    resyncFromMachine(s);
     s.tool = s.selected_tool;
     Event e;
     e.type = EventType::kToolChange;
@@ -57,6 +67,7 @@ void BlockExecutor::setTool(Step& st) {
     if (q < 0 || q != t) st.failWord('Q', "Need non-negative integer Q word with M61");
     if (t != 0 && !config_.tools.find(t))
       st.failWord('Q', "Requested tool " + std::to_string(t) + " not found in the tool table");
+    resyncFromMachine(s);  // M61 re-reads the position as M6 does
     s.tool = t;
     Event e;
     e.type = EventType::kToolChange;
