@@ -52,6 +52,12 @@ void BlockExecutor::setOffsetsG10(Step& st) {
     st.fail("I J words not allowed with G10 L" + std::to_string(static_cast<int>(l)), column);
   // The current point in the old offsets, before the system is re-read.
   const AxisValues machine = toMachine(s, s.current);
+  // LinuxCNC re-expresses the current point of the active system as if no G92
+  // offset were in effect: where G10 L2 R changes the rotation while G92 is set,
+  // the program point it keeps is not where the machine is (see reexpressed).
+  InterpState no_g92 = s;
+  no_g92.g92 = AxisValues{};
+  const AxisValues machine_no_g92 = toMachine(no_g92, s.current);
   importCoordSystem(s, index);
   AxisValues& offset = s.g5x[index];
   if (l == 2) {
@@ -67,11 +73,17 @@ void BlockExecutor::setOffsetsG10(Step& st) {
       if (st.w.has(kAxisLetters[a])) wanted[a] = axisWord(*this, st.w, a, st.unit());
     probe.g5x[index] = AxisValues{};
     const AxisValues zero_offset = toMachine(probe, wanted);
+    // Under a rotation X and Y of the offset both change when either is named:
+    // the axis left out keeps reading what it read (as in LinuxCNC).
+    const bool xy = st.w.has('X') || st.w.has('Y');
     for (int a = 0; a < kAxisCount; ++a)
-      if (st.w.has(kAxisLetters[a])) offset[a] = machine[a] - zero_offset[a];
+      if (st.w.has(kAxisLetters[a]) || (xy && (a == kX || a == kY)))
+        offset[a] = machine[a] - zero_offset[a];
   }
   if (active) {
-    s.current = toProgram(s, machine);
+    no_g92.g5x = s.g5x;
+    no_g92.rotation = s.rotation;
+    s.current = toProgram(no_g92, machine_no_g92);
     s.programmed = s.current;
   }
 }
@@ -159,14 +171,18 @@ void BlockExecutor::goToStored(Step& st, bool second) {
   const AxisValues middle = findEnd(st);
   FeedInfo none;
   emitStraight(st, MotionType::kRapid, middle, none);
-  AxisValues target_machine = toMachine(s, middle);
   AxisValues& stored = second ? s.g30 : s.g28;
   if (params_)
     for (int a = 0; a < kAxisCount; ++a) stored[a] = params_->get((second ? 5181 : 5161) + a);
+  // As LinuxCNC does, the stored point is taken into the program frame whole
+  // and the named axes are picked there: under a G10 L2 R rotation an axis left
+  // out keeps its program value, not its machine value.
+  const AxisValues stored_program = toProgram(s, stored);
+  AxisValues target = middle;
   const bool all = !st.w.hasAxis();
   for (int a = 0; a < kAxisCount; ++a)
-    if (all || st.w.has(kAxisLetters[a])) target_machine[a] = stored[a];
-  emitStraight(st, MotionType::kRapid, toProgram(s, target_machine), none);
+    if (all || st.w.has(kAxisLetters[a])) target[a] = stored_program[a];
+  emitStraight(st, MotionType::kRapid, target, none);
 }
 
 }  // namespace mdhd::gcode
