@@ -4,8 +4,10 @@
 #include <chrono>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "daemon/shadow_carver.h"
+#include "daemon/shadow_session.h"
 #include "sim/kinematics/presets.h"
 #include "tests/check/check_fixture.h"
 
@@ -33,6 +35,16 @@ inline PollSample at(double x, double y, double z, int ms, std::optional<std::in
   s.spindle_on = spindle;
   s.line = line;
   return s;
+}
+
+// Waits until `s` is in `state`, at most `limit`; false when it never got there.
+inline bool waitState(const ShadowSession& s, ShadowState state, std::chrono::milliseconds limit) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (s.state() != state) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return true;
 }
 
 }  // namespace mdhd::shadow::testing

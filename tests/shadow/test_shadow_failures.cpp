@@ -30,15 +30,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-bool failuresWaitState(const ShadowSession& s, ShadowState state, std::chrono::milliseconds limit) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (s.state() != state) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(2ms);
-  }
-  return true;
-}
-
 std::vector<nlohmann::json> eventsOf(ShadowSession& s, const std::string& type) {
   std::vector<nlohmann::json> out;
   for (const ShadowEvent& e : s.events().since(0, 0ms))
@@ -157,10 +148,10 @@ TEST(ShadowFailures, DribbledReplyMakesTheShadowStale) {
   });
   ShadowSession session("t", failuresSpec(peer.port(), 100, 50));
   session.start();
-  ASSERT_TRUE(failuresWaitState(session, ShadowState::kLive, 5s));
+  ASSERT_TRUE(waitState(session, ShadowState::kLive, 5s));
   while (requests.load() < 6) std::this_thread::sleep_for(1ms);
   const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_TRUE(failuresWaitState(session, ShadowState::kStale, 2s));
+  ASSERT_TRUE(waitState(session, ShadowState::kStale, 2s));
   EXPECT_LT(msSince(t0), 1000);  // 100 ms and the wake-up
   const nlohmann::json s = session.status();
   EXPECT_THAT(s["polls"]["last_error"].get<std::string>(), HasSubstr("timeout: modbus 127.0.0.1"));
@@ -210,8 +201,8 @@ TEST(ShadowFailures, WatchdogMakesTheShadowStaleWhenNoSampleComes) {
   script->block_after = 10;
   ShadowSession session("t", failuresSpec(0, 100, 100), {}, scripted(script));
   session.start();
-  ASSERT_TRUE(failuresWaitState(session, ShadowState::kLive, 5s));
-  ASSERT_TRUE(failuresWaitState(session, ShadowState::kStale, 3s));
+  ASSERT_TRUE(waitState(session, ShadowState::kLive, 5s));
+  ASSERT_TRUE(waitState(session, ShadowState::kStale, 3s));
   const std::vector<nlohmann::json> states = statesUntil(session, "stale");
   ASSERT_FALSE(states.empty());
   ASSERT_EQ(states.back()["state"], "stale");
@@ -283,8 +274,8 @@ TEST(ShadowFailures, UnknownToolAfterLiveGoesStaleWithTheReason) {
   script->poses.push_back(pose(10, 20, -10, 99));
   ShadowSession session("t", failuresSpec(0, 100, 200), {}, scripted(script));
   session.start();
-  ASSERT_TRUE(failuresWaitState(session, ShadowState::kLive, 3s));
-  ASSERT_TRUE(failuresWaitState(session, ShadowState::kStale, 3s));
+  ASSERT_TRUE(waitState(session, ShadowState::kLive, 3s));
+  ASSERT_TRUE(waitState(session, ShadowState::kStale, 3s));
   const std::vector<nlohmann::json> states = statesUntil(session, "stale");
   session.stop();
   ASSERT_GE(states.size(), 3u);

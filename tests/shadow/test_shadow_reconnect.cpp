@@ -35,15 +35,6 @@ int lineOf(const ShadowSession& s) {
   return line.is_number() ? line.get<int>() : -1;
 }
 
-bool waitState(const ShadowSession& s, ShadowState state, std::chrono::milliseconds limit) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (s.state() != state) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(2ms);
-  }
-  return true;
-}
-
 TEST(ShadowReconnect, SimulatorKilledAndRestartedMidRun) {
   const cli::LoadedJob loaded = cli::loadCheckedJobFile(examplePath("contour-3axis"));
   const double check_volume = cli::runCheckJob(loaded).stats.final_volume_mm3;
