@@ -61,20 +61,6 @@ ShadowSpec failuresSpec(int port, int timeout_ms, double poll_hz = 100) {
   return spec;
 }
 
-// Registers of the default map: tip at (x, 20, z), tool, spindle on, line 7.
-std::vector<std::uint16_t> failuresRegisters(float x, float z, std::uint16_t tool = 1) {
-  const float xyz[3] = {x, 20.0f, z + 40.0f};
-  std::vector<std::uint16_t> r;
-  for (float v : xyz) {
-    std::uint32_t bits = 0;
-    std::memcpy(&bits, &v, 4);
-    r.push_back(static_cast<std::uint16_t>(bits >> 16));
-    r.push_back(static_cast<std::uint16_t>(bits & 0xFFFF));
-  }
-  r.insert(r.end(), {tool, 1, 0, 7});
-  return r;
-}
-
 // A controller in-process: the samples of `poses` in turn (the last one again
 // and again), a feed-hold write that does what `hold` says, and a read that
 // blocks (until interrupted) once `block_after` samples were served.
@@ -133,7 +119,7 @@ protocol::ModbusSample pose(double x, double y, double z, int tool = 1, bool spi
 TEST(ShadowFailures, DribbledReplyMakesTheShadowStale) {
   std::atomic<int> requests{0};
   RawPeer peer([&](int, const Bytes& q, int fd) {
-    const Bytes reply = modbus_test::readReply(q, failuresRegisters(10, 5));
+    const Bytes reply = modbus_test::readReply(q, defaultMapRegisters(10, 5));
     if (requests++ < 5) {
       modbus_test::sendAll(fd, reply);
       return true;

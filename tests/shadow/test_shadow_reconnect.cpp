@@ -78,21 +78,6 @@ TEST(ShadowReconnect, SimulatorKilledAndRestartedMidRun) {
   session.stop();
 }
 
-// Registers of the cell's 3-axis default map (X Y Z float32 abcd, tool, spindle,
-// line uint32): the tool 1 mm deep at x, spindle on, line 7.
-std::vector<std::uint16_t> registersAt(float x) {
-  const float xyz[3] = {x, 20.0f, 39.0f};
-  std::vector<std::uint16_t> r;
-  for (float v : xyz) {
-    std::uint32_t bits = 0;
-    std::memcpy(&bits, &v, 4);
-    r.push_back(static_cast<std::uint16_t>(bits >> 16));
-    r.push_back(static_cast<std::uint16_t>(bits & 0xFFFF));
-  }
-  r.insert(r.end(), {1, 1, 0, 7});
-  return r;
-}
-
 TEST(ShadowReconnect, SurvivesGarbageExceptionsShortFramesAndNaN) {
   std::atomic<int> requests{0};
   constexpr int kRequests = 120;  // x advances 0.1 mm per good answer
@@ -110,19 +95,19 @@ TEST(ShadowReconnect, SurvivesGarbageExceptionsShortFramesAndNaN) {
         return true;
       }
       case 60: {  // half a reply, then the peer hangs up
-        Bytes r = modbus_test::readReply(q, registersAt(at));
+        Bytes r = modbus_test::readReply(q, defaultMapRegisters(at, -1));
         r.resize(r.size() / 2);
         modbus_test::sendAll(fd, r);
         return false;
       }
       case 75: {  // another transaction's reply
-        Bytes r = modbus_test::readReply(q, registersAt(at));
+        Bytes r = modbus_test::readReply(q, defaultMapRegisters(at, -1));
         r[1] ^= 0x55;
         modbus_test::sendAll(fd, r);
         return true;
       }
       case 90: {  // NaN for X
-        std::vector<std::uint16_t> regs = registersAt(at);
+        std::vector<std::uint16_t> regs = defaultMapRegisters(at, -1);
         regs[0] = 0x7FC0;
         regs[1] = 0;
         modbus_test::sendAll(fd, modbus_test::readReply(q, regs));
@@ -130,7 +115,7 @@ TEST(ShadowReconnect, SurvivesGarbageExceptionsShortFramesAndNaN) {
       }
       default:
         if (n < kRequests) x = at + 0.1f;
-        modbus_test::sendAll(fd, modbus_test::readReply(q, registersAt(x.load())));
+        modbus_test::sendAll(fd, modbus_test::readReply(q, defaultMapRegisters(x.load(), -1)));
         return true;
     }
   });
