@@ -33,7 +33,7 @@ void BlockExecutor::resyncFromMachine(InterpState& s) const {
 void BlockExecutor::setTool(Step& st) {
   InterpState& s = st.s;
   if (st.w.has('T')) {
-    const int t = static_cast<int>(st.w.get('T'));
+    const int t = st.intWord('T');
     if (t != 0 && !config_.tools.find(t))
       st.failWord('T', "Requested tool " + std::to_string(t) + " not found in the tool table");
     s.selected_tool = t;
@@ -63,7 +63,7 @@ void BlockExecutor::setTool(Step& st) {
   } else if (m == 610) {
     if (!st.w.has('Q')) st.fail("Q word missing with M61", st.w.m_column[kMToolChange]);
     const double q = st.w.get('Q');
-    const int t = static_cast<int>(q);
+    const int t = st.intWord('Q');
     if (q < 0 || q != t) st.failWord('Q', "Need non-negative integer Q word with M61");
     if (t != 0 && !config_.tools.find(t))
       st.failWord('Q', "Requested tool " + std::to_string(t) + " not found in the tool table");
@@ -145,7 +145,7 @@ void BlockExecutor::setCutterComp(Step& st) {
     if (st.w.has('D')) {
       const double d = st.w.get('D');
       if (d < 0 || d != std::floor(d)) st.failWord('D', "Negative or non-integer D word used");
-      tool = static_cast<int>(d);
+      tool = st.intWord('D');
       if (tool == 0) tool = s.tool;  // D0: LinuxCNC's pocket 0, the tool in the spindle
     }
     if (tool != 0) {
@@ -187,7 +187,7 @@ void BlockExecutor::setToolLength(Step& st) {
     const double h = st.w.get('H');
     if (h < 0 || h != std::floor(h)) st.failWord('H', "Negative or non-integer H word used");
     // H0 is LinuxCNC's pocket 0: the tool in the spindle.
-    return h == 0 ? s.tool : static_cast<int>(h);
+    return h == 0 ? s.tool : st.intWord('H');
   };
   switch (g) {
     case 430: {

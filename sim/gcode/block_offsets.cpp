@@ -37,7 +37,7 @@ void BlockExecutor::setOffsetsG10(Step& st) {
     return;
   }
   if (l != 2 && l != 20)
-    st.failWord('L', "G10 L" + std::to_string(static_cast<int>(l)) +
+    st.failWord('L', "G10 L" + std::to_string(st.intWord('L')) +
                          " is not supported (only L1, L2, L10, L11, L20)");
   if (!st.w.has('P')) st.fail("P word missing with G10", column);
   const double p = st.w.get('P');
@@ -100,7 +100,7 @@ void BlockExecutor::setToolG10(Step& st, int l) {
   if (!w.has('P')) st.fail("P word missing with " + name, column);
   const double p = w.get('P');
   if (p != std::floor(p) || p < 1) st.failWord('P', "Tool number P must be a positive integer");
-  const int number = static_cast<int>(p);
+  const int number = st.intWord('P');
   const ToolEntry* found = config_.tools.find(number);
   if (!found)
     st.failWord('P', "Requested tool " + std::to_string(number) + " not found in the tool table");

@@ -23,6 +23,14 @@ struct BlockExecutor::Step {
   [[noreturn]] void failWord(char c, const std::string& message) const {
     failAt(block, w.has(c) ? w.col(c) : 0, message);
   }
+  // A word's value as an int (truncated); beyond an int's range, where a cast is
+  // undefined, an error naming the word (the fuzzer's T5.5e11, H1.2e10).
+  int intWord(char c) const {
+    const double v = w.get(c);
+    if (!(v > -2147483649.0 && v < 2147483648.0))
+      failWord(c, std::string(1, c) + " word value out of range");
+    return static_cast<int>(v);
+  }
   int gColumn(int group) const { return w.g[group] >= 0 ? w.g_column[group] : 0; }
 };
 

@@ -47,7 +47,7 @@ void BlockExecutor::cannedCycle(Step& st, int motion) {
     const double l = w.get('L');
     if (l == 0) st.failWord('L', "Cannot do zero repeats of cycle");
     if (l < 0 || l != std::floor(l)) st.failWord('L', "Negative or non-integer L word used");
-    repeats = static_cast<int>(l);
+    repeats = st.intWord('L');
   }
   const PlaneAxes axes = planeAxes(s.plane);
   const char c_letter = kAxisLetters[axes.normal];

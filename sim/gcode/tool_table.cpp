@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <string>
 
 #include "sim/gcode/error.h"
@@ -52,7 +53,7 @@ bool parseToolLine(std::string_view code, int line, double scale, ToolEntry& too
     if (ec != std::errc()) tableError(line, column, std::string("Bad number after '") + c + "'");
     i = static_cast<std::size_t>(end - code.data());
     if (c == 'T') {
-      if (value < 0 || value != static_cast<int>(value))
+      if (!(value >= 0 && value < 2147483648.0) || value != std::floor(value))
         tableError(line, column, "Bad tool number");
       tool.number = static_cast<int>(value);
       has_t = true;

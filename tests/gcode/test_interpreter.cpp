@@ -39,6 +39,21 @@ TEST(InterpreterErrors, TwoCodesOfOneModalGroupNameTheColumn) {
   EXPECT_EQ(r.motions.size(), 1u);
 }
 
+// Words read as integers beyond an int's range are errors at the word, not undefined
+// casts (found by fuzz_gcode_interpreter under UBSan).
+TEST(InterpreterErrors, IntegerWordsBeyondAnIntAreErrors) {
+  for (const char* program :
+       {"T555555555555 M6\n", "G43 H12222222222\n", "M61 Q100000000000000000000\n",
+        "G10 L1000000000000000000000000000000 P1\n", "G10 L1 P1000000000000 Z5\n",
+        "G0 X0 Y0 Z5\nG81 X1 Y1 Z-1 R1 L1000000000000000 F100\n",
+        "G41 D1000000000000000 G1 X5 F100\n"}) {
+    const Result r = run(program);
+    ASSERT_TRUE(r.error) << program;
+    EXPECT_NE(std::string(r.error->what()).find("word value out of range"), std::string::npos)
+        << program << ": " << r.error->what();
+  }
+}
+
 TEST(InterpreterErrors, UnknownCodesAndMissingAxes) {
   Result r = run("G21\nG68 X0\n");
   ASSERT_TRUE(r.error);
