@@ -8,6 +8,7 @@
 #include "daemon/routes_machines.h"
 #include "daemon/routes_ops.h"
 #include "daemon/routes_shadows.h"
+#include "daemon/routes_web.h"
 #include "protocol/json_schema.h"
 
 namespace mdhd::service {
@@ -55,6 +56,7 @@ Service::Service(ServiceConfig config)
   addJobRoutes(http_, *store_, *pool_, config_);
   addMachineRoutes(http_, *store_);
   addShadowRoutes(http_, *shadows_, *store_, config_);
+  addWebRoutes(http_);
   metrics_.addGauge("mdhd_shadows_running", "Live shadows polling a machine.",
                     [this] { return static_cast<double>(shadows_->running()); });
   metrics_.addGauge("mdhd_shadow_streams", "Open shadow event streams.",
