@@ -13,10 +13,10 @@ namespace {
 
 constexpr const char* kJobs = "/api/v1/jobs";
 
-JobRecord findJob(JobStore& store, const httplib::Request& req) {
+JobRecord findJob(JobStore& store, const httplib::Request& req, bool withJobText = false) {
   const std::string id = pathParam(req, 1);
   std::optional<JobRecord> record;
-  if (isJobId(id)) record = store.job(id);
+  if (isJobId(id)) record = store.job(id, withJobText);
   if (!record)
     throw HttpError(404, "not_found", "no job " + id.substr(0, 64), {{"id", id.substr(0, 64)}});
   return *record;
@@ -233,6 +233,17 @@ void addJobRoutes(HttpService& http, JobStore& store, WorkerPool& pool,
              [&](const httplib::Request& req, httplib::Response& res) {
                sendJsonText(res, 200, statusText(findJob(store, req), pool));
              });
+  http.route(
+      {"GET",
+       std::string(kJobs) + "/{id}/job",
+       {{"summary", "The job document as accepted (a registered machine inlined)"},
+        {"tags", {"jobs"}},
+        {"description", "What the job ran: lets a client show the program lines a report names."},
+        {"responses",
+         {{"200", jsonResponse("The job document.", schemaRef("Job"))}, {"404", notFound}}}}},
+      [&](const httplib::Request& req, httplib::Response& res) {
+        sendJsonText(res, 200, findJob(store, req, true).job);
+      });
   http.route(
       {"GET",
        std::string(kJobs) + "/{id}/mesh",

@@ -140,6 +140,12 @@ TEST_F(JobsApi, MachinesByNameAndTheRegistry) {
   // The accepted job kept its copy.
   EXPECT_EQ(getJson(*cli, "/api/v1/jobs/" + byName.body["id"].get<std::string>())["status"],
             "done");
+  // ... which the job's document shows: the machine inlined, the program as sent.
+  const nlohmann::json doc =
+      getJson(*cli, "/api/v1/jobs/" + byName.body["id"].get<std::string>() + "/job");
+  EXPECT_EQ(doc["machine"], nlohmann::json::parse(machine));
+  EXPECT_EQ(doc["program"], inlineDoc["program"]);
+  EXPECT_EQ(doc["tools"], inlineDoc["tools"]);
 }
 
 TEST_F(JobsApi, BadDocumentsAreRefusedWithWhatAndWhere) {
@@ -283,6 +289,7 @@ TEST_F(JobsApi, UnknownIdsAre404AndPathsNeverReachFiles) {
   for (const char* path :
        {"/api/v1/jobs/00000000000000000000000000000000", "/api/v1/jobs/not-an-id",
         "/api/v1/jobs/00000000000000000000000000000000/mesh",
+        "/api/v1/jobs/00000000000000000000000000000000/job",
         "/api/v1/jobs/..%2F..%2Fmdhd.sqlite3/mesh", "/api/v1/jobs/%2e%2e/mesh",
         "/api/v1/machines/nope", "/api/v1/machines/..%2Fx"}) {
     auto r = cli->Get(path);
