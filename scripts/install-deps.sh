@@ -5,7 +5,8 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config clang libclang-rt-14-dev
   libmodbus-dev libglm-dev nlohmann-json3-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev libsqlite3-dev sqlite3 wrk
-  python3-pymodbus python3-serial python3-serial-asyncio)
+  python3-pymodbus python3-serial python3-serial-asyncio
+  systemd curl)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
