@@ -26,6 +26,8 @@ class Episodes {
   // is open, opens one with the entry `start()` builds (called only then).
   void touch(const EpisodeKey& key, double depth, int line,
              const std::function<Collision()>& start);
+  // Ends the open episode of `key` now (if any): the next touch opens a new one.
+  void close(const EpisodeKey& key) { open_.erase(key); }
   // Whether an episode of `key` is open (touched by the previous step).
   bool isOpen(const EpisodeKey& key) const { return open_.count(key) != 0; }
   // How far (mm) any point of the part may have moved since the open episode of `key`

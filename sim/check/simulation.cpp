@@ -270,21 +270,26 @@ void Simulation::event(const gcode::Event& e) {
 }
 
 void Simulation::checkLimits(const gcode::Motion& m, const kin::JointPath& path) {
-  if (const auto v = kin::checkLimits(path)) {
-    const EpisodeKey key{CollisionType::kAxisLimit, ToolPartName::kNone, -1, v->joint};
-    episodes_.touch(key, v->excess, m.pos.line, [&] {
+  // Every joint beyond its range is its own episode: until session 22 only the one that
+  // left first was looked at, so a second joint's overtravel in the same move was
+  // missed or reported at a later line.
+  for (const kin::LimitViolation& v : kin::checkLimitsAll(path)) {
+    const EpisodeKey key{CollisionType::kAxisLimit, ToolPartName::kNone, -1, v.joint};
+    episodes_.touch(key, v.excess, m.pos.line, [&] {
       Collision c;
       c.type = CollisionType::kAxisLimit;
       c.file = m.pos.file;
       c.line = m.pos.line;
       if (m.block_text != nullptr) c.block = *m.block_text;
       c.tool = m.tool;
-      c.joints = path.at(v->first_s);
-      c.path_s = v->first_s;
+      c.joints = path.at(v.first_s);
+      c.path_s = v.first_s;
       c.position = toolPoseAt(path, c.joints).tip;
-      c.axis = kin_.machine().joints[static_cast<std::size_t>(v->joint)].name;
+      c.axis = kin_.machine().joints[static_cast<std::size_t>(v.joint)].name;
       return c;
     });
+    // Back inside at the move's end: a later overtravel is a new episode.
+    if (!v.outside_at_end) episodes_.close(key);
   }
   episodes_.endStep(true);
 }

@@ -169,11 +169,11 @@ std::optional<LimitViolation> checkLimits(const Kinematics& kin, const JointValu
   return std::nullopt;
 }
 
-std::optional<LimitViolation> checkLimits(const JointPath& path) {
+std::vector<LimitViolation> checkLimitsAll(const JointPath& path) {
   const Machine& m = path.kinematics().machine();
   std::vector<double> s;  // sample parameters, made on first need
   std::vector<JointValues> q;
-  std::optional<LimitViolation> best;
+  std::vector<LimitViolation> out;
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     if (!m.joints[j].limits) continue;
     const auto axis = *axisOfName(m.joints[j].name);
@@ -194,9 +194,21 @@ std::optional<LimitViolation> checkLimits(const JointPath& path) {
       for (std::size_t i = 0; i < s.size(); ++i) values[i] = q[i][axis];
       v = sampledCheck(path, static_cast<int>(j), axis, l, s, values);
     }
-    if (v && (!best || v->first_s < best->first_s)) best = v;
+    if (!v) continue;
+    v->outside_at_end = side(l, path.endJoints()[axis]) != 0;
+    out.push_back(*v);
   }
-  return best;
+  // Machine order within equal first_s: the sort is stable.
+  std::stable_sort(out.begin(), out.end(), [](const LimitViolation& a, const LimitViolation& b) {
+    return a.first_s < b.first_s;
+  });
+  return out;
+}
+
+std::optional<LimitViolation> checkLimits(const JointPath& path) {
+  std::vector<LimitViolation> all = checkLimitsAll(path);
+  if (all.empty()) return std::nullopt;
+  return all.front();
 }
 
 }  // namespace mdhd::kin

@@ -2,6 +2,7 @@
 // Axis limits: of one joint vector, and of a whole JointPath, where arcs and tool
 // centre point moves can leave a joint's range between their end points.
 #include <optional>
+#include <vector>
 
 #include "sim/kinematics/joint_path.h"
 
@@ -13,11 +14,12 @@ inline constexpr double kLimitSlack = 1e-9;
 struct LimitViolation {
   int joint = -1;  // index into machine.joints
   gcode::Axis axis = gcode::kX;
-  double limit = 0.0;    // the bound that was crossed (min or max)
-  double value = 0.0;    // the farthest value beyond it
-  double excess = 0.0;   // |value - limit| > 0
-  double first_s = 0.0;  // paths: where the joint first leaves its range
-  double worst_s = 0.0;  // paths: where it reaches `value`
+  double limit = 0.0;           // the bound that was crossed (min or max)
+  double value = 0.0;           // the farthest value beyond it
+  double excess = 0.0;          // |value - limit| > 0
+  double first_s = 0.0;         // paths: where the joint first leaves its range
+  double worst_s = 0.0;         // paths: where it reaches `value`
+  bool outside_at_end = false;  // paths: the joint is still beyond its range at s = 1
 };
 
 // The first joint (in machine order) outside its limits, if any.
@@ -29,5 +31,10 @@ std::optional<LimitViolation> checkLimits(const Kinematics& kin, const JointValu
 // the arc's extreme angles added and every local extreme refined by golden section.
 // Throws KinematicsError when a tcp path passes a singular pose.
 std::optional<LimitViolation> checkLimits(const JointPath& path);
+
+// Every joint that leaves its range along the path, one entry per joint (its first
+// crossing and its farthest value over the path), ordered by first_s (ties: machine
+// order). A move can take several joints beyond their limits; each is an overtravel.
+std::vector<LimitViolation> checkLimitsAll(const JointPath& path);
 
 }  // namespace mdhd::kin

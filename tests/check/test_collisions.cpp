@@ -307,6 +307,49 @@ TEST(Collisions, AxisLimitEpisodesAndHowFarBeyond) {
   EXPECT_EQ(r.collisions.size(), 2u);
 }
 
+// Each joint beyond its range is its own episode, also when another joint left first
+// in the same move, and an overtravel after the joint came back inside is a new one.
+// Until session 22 only the earliest joint of a move was looked at: X of line 4 was
+// reported at line 5, A of line 6 never, and lines 9 and 10 were one episode.
+TEST(Collisions, AxisLimitEveryJointOfAMoveAndEveryReturnInside) {
+  Rig s;
+  s.machine = kin::presets::acTrunnion();  // X +-400, Y +-300, A -120..30
+  s.options.density = 2;
+  const Report r = run(std::move(s),
+                       "G21 G90 G17\nT1 M6\n"
+                       "G0 Z100\n"                   // 3
+                       "G0 X500 Y400\n"              // 4: Y leaves at s 0.75, X at 0.8
+                       "G0 X0 Y0\n"                  // 5: both back inside
+                       "G0 X500 A-130\n"             // 6: X at s 0.8, A at 12/13
+                       "G0 X390 Y-15 A0\n"           // 7: both back inside
+                       "G3 X390 Y15 I0 J15 F1000\n"  // 8: bulges to X405 and back
+                       "G2 X390 Y-15 I0 J-15\n"      // 9: again: a new episode
+                       "M30\n");
+  const auto lim = ofType(r, CollisionType::kAxisLimit);
+  ASSERT_EQ(lim.size(), 6u);
+  auto at = [&](std::size_t i, int line, int last, const char* axis, double depth) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(lim[i]->line, line);
+    EXPECT_EQ(lim[i]->last_line, last);
+    EXPECT_EQ(lim[i]->axis, axis);
+    EXPECT_NEAR(lim[i]->depth, depth, 1e-6);
+  };
+  at(0, 4, 5, "Y", 100);
+  at(1, 4, 5, "X", 100);
+  at(2, 6, 7, "X", 100);
+  at(3, 6, 7, "A", 10);
+  at(4, 8, 8, "X", 5);
+  at(5, 9, 9, "X", 5);
+  // Where each first leaves: X375 Y300; X400 Y320; X400 A-104; A-120 X461.54.
+  EXPECT_NEAR(lim[0]->joints[gcode::kX], 375, 1e-6);
+  EXPECT_NEAR(lim[1]->joints[gcode::kY], 320, 1e-6);
+  EXPECT_NEAR(lim[2]->joints[gcode::kA], -104, 1e-6);
+  EXPECT_NEAR(lim[3]->joints[gcode::kX], 500.0 * 12 / 13, 1e-6);
+  // On the arcs X reaches 400 where Y = -+sqrt(15^2 - 10^2).
+  EXPECT_NEAR(lim[4]->joints[gcode::kY], -std::sqrt(125.0), 1e-6);
+  EXPECT_NEAR(lim[5]->joints[gcode::kY], std::sqrt(125.0), 1e-6);
+}
+
 // 5-axis: an AC trunnion (W at the table centre) turns the part under a standing tool.
 Rig trunnion() {
   Rig s;

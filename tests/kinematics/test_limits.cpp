@@ -85,6 +85,34 @@ TEST(Limits, EarliestViolationWinsAcrossJoints) {
   EXPECT_EQ(v->excess, 300);
 }
 
+TEST(Limits, AllListsEveryJointThatLeaves) {
+  // AC trunnion: X 0 -> 500 and A 0 -> -130 in one move. X leaves at s 0.8 (400), A at
+  // 12/13 (-120): both are overtravel, whichever left first.
+  const Kinematics kin(presets::acTrunnion());
+  JointValues b = xyz(500, 0, 0);
+  b[gcode::kA] = -130;
+  const JointPath p(kin, move(xyz(0, 0, 0), b), 0);
+  const auto all = checkLimitsAll(p);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].axis, gcode::kX);
+  EXPECT_DOUBLE_EQ(all[0].first_s, 0.8);
+  EXPECT_EQ(all[0].excess, 100);
+  EXPECT_TRUE(all[0].outside_at_end);
+  EXPECT_EQ(all[1].axis, gcode::kA);
+  EXPECT_DOUBLE_EQ(all[1].first_s, 12.0 / 13);
+  EXPECT_EQ(all[1].excess, 10);
+  EXPECT_TRUE(all[1].outside_at_end);
+  // Back: both start beyond (first_s 0, machine order) and end inside.
+  const auto back = checkLimitsAll(JointPath(kin, move(b, xyz(0, 0, 0)), 0));
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].axis, gcode::kX);
+  EXPECT_EQ(back[1].axis, gcode::kA);
+  EXPECT_EQ(back[1].first_s, 0);
+  EXPECT_FALSE(back[0].outside_at_end);
+  EXPECT_FALSE(back[1].outside_at_end);
+  EXPECT_EQ(checkLimits(p)->axis, gcode::kX);  // the earliest
+}
+
 TEST(Limits, ArcThatExceedsOnlyInItsMiddle) {
   const Kinematics kin(exampleMill());
   // G2 from (90, 445) to (110, 445) about (100, 445): clockwise over the top, through
