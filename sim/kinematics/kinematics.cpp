@@ -32,7 +32,7 @@ Kinematics::Kinematics(Machine machine) : machine_(std::move(machine)) {
   if (!issues.empty()) {
     throw KinematicsError("machine." + issues.front().field + ": " + issues.front().message);
   }
-  spindle_axis_ = glm::normalize(machine_.spindle_axis);
+  spindle_axis_ = unitDirection(machine_.spindle_axis);
   joint_of_axis_.fill(-1);
   for (int a = 0; a < gcode::kAxisCount; ++a) {
     joint_of_axis_[a] = jointIndex(machine_, static_cast<gcode::Axis>(a));
@@ -46,7 +46,7 @@ Kinematics::ChainJoint Kinematics::compile(const Joint& joint) {
   ChainJoint c;
   c.axis = *axisOfName(joint.name);
   c.rotary = joint.type == JointType::kRotary;
-  c.unit = glm::normalize(joint.axis);
+  c.unit = unitDirection(joint.axis);
   c.origin = joint.origin;
   const glm::dvec3& u = c.unit;
   c.outer = glm::outerProduct(u, u);

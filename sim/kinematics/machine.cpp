@@ -1,5 +1,6 @@
 #include "sim/kinematics/machine.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -26,7 +27,7 @@ void checkJoint(const Joint& joint, const std::string& field, std::vector<Machin
                                                 ? "linear (X Y Z U V W are linear axes)"
                                                 : "rotary (A B C are rotary axes)")});
   }
-  if (!finite(joint.axis) || glm::dot(joint.axis, joint.axis) < 1e-24) {
+  if (unitDirection(joint.axis) == glm::dvec3(0.0)) {
     issues.push_back({field + ".axis", "must be a finite, non-zero direction"});
   }
   if (!finite(joint.origin)) issues.push_back({field + ".origin", "must be finite"});
@@ -65,6 +66,14 @@ void checkChain(const Machine& m, const std::vector<int>& chain, const std::stri
 }
 
 }  // namespace
+
+glm::dvec3 unitDirection(const glm::dvec3& v) {
+  if (!finite(v)) return glm::dvec3(0.0);
+  const double big = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (!(big > 0.0)) return glm::dvec3(0.0);
+  const glm::dvec3 w = v / big;  // largest component +-1: no overflow, no underflow to 0
+  return w / std::sqrt(glm::dot(w, w));
+}
 
 std::optional<gcode::Axis> axisOfName(const std::string& name) {
   if (name.size() != 1) return std::nullopt;
@@ -145,7 +154,7 @@ std::vector<MachineIssue> validateMachine(const Machine& m) {
           {std::string("home.") + gcode::kAxisLetters[a], "the machine has no joint of that name"});
     }
   }
-  if (!finite(m.spindle_axis) || glm::dot(m.spindle_axis, m.spindle_axis) < 1e-24) {
+  if (unitDirection(m.spindle_axis) == glm::dvec3(0.0)) {
     issues.push_back({"spindle_axis", "must be a finite, non-zero direction"});
   }
   if (!(std::isfinite(m.rapid_feed) && m.rapid_feed > 0)) {

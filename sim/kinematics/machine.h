@@ -50,6 +50,11 @@ struct MachineIssue {
   std::string message;
 };
 
+// The unit vector along `v`, or zero when v is zero or not finite. Scaled by its
+// largest component first, so any finite non-zero direction works: glm::normalize
+// overflows to a zero axis for [1e200, 0, 0] (and gave a degenerate machine).
+glm::dvec3 unitDirection(const glm::dvec3& v);
+
 // Every problem found, in field order; empty when the machine can be used.
 std::vector<MachineIssue> validateMachine(const Machine& machine);
 

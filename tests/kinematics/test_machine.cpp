@@ -106,5 +106,35 @@ TEST(Machine, NonUnitAxesAreNormalised) {
   EXPECT_EQ(p.axis, glm::dvec3(0, 0, 1));
 }
 
+// Any finite non-zero vector is a direction. glm::normalize squared it first: A's axis
+// [1e200, 0, 0] became zero (A-90 then turned nothing and G43.4 called every pose
+// singular), and [0, 0, 1e-200] was refused as a zero direction.
+TEST(Machine, AxesOfAnyFiniteLengthAreDirections) {
+  Machine m = presets::acTrunnion();
+  m.joints[3].axis = {1e200, 0, 0};
+  m.joints[4].axis = {0, 0, 1e-200};
+  m.spindle_axis = {0, 1e300, 1e300};
+  ASSERT_EQ(issues(m), "");
+  const Kinematics kin(m);
+  JointValues q{};
+  q[gcode::kZ] = 100;
+  q[gcode::kA] = -90;
+  q[gcode::kC] = 90;
+  // Gauge (0, 0, 100), axis (0, 1, 1)/sqrt2 in the machine; W = R_x(-90) R_z(90), so in W
+  // p -> R_z(-90) R_x(90) p: (0, 0, 100) -> (0, -100, 0) -> (-100, 0, 0), and the axis
+  // (0, 1, 1)/sqrt2 -> (0, -1, 1)/sqrt2 -> (-1, 0, 1)/sqrt2.
+  const ToolPose p = kin.toolPose(q, 10 * std::sqrt(2.0));
+  const double h = std::sqrt(0.5);
+  EXPECT_NEAR(p.axis.x, -h, 1e-12);
+  EXPECT_NEAR(p.axis.y, 0, 1e-12);
+  EXPECT_NEAR(p.axis.z, h, 1e-12);
+  EXPECT_NEAR(p.tip.x, -90, 1e-9);
+  EXPECT_NEAR(p.tip.y, 0, 1e-9);
+  EXPECT_NEAR(p.tip.z, -10, 1e-9);
+  EXPECT_EQ(unitDirection({0x3p-1030, 0, 0x4p-1030}), glm::dvec3(0.6, 0, 0.8));  // subnormal
+  EXPECT_EQ(unitDirection({0, 0, 0}), glm::dvec3(0.0));
+  EXPECT_EQ(unitDirection({1, std::nan(""), 0}), glm::dvec3(0.0));
+}
+
 }  // namespace
 }  // namespace mdhd::kin
