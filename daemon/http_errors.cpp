@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <string_view>
 
 #include "daemon/number_text.h"
 #include "protocol/job_json.h"
@@ -103,6 +105,66 @@ long long queryInteger(const httplib::Request& req, const char* name, long long 
                     {{"parameter", name}});
   }
   return *v;
+}
+
+namespace {
+
+// Up to 19 decimal digits (no sign, no spaces) as a number.
+std::optional<std::uint64_t> decimal(std::string_view text) {
+  if (text.empty() || text.size() > 19) return std::nullopt;
+  std::uint64_t v = 0;
+  for (char c : text) {
+    if (c < '0' || c > '9') return std::nullopt;
+    v = v * 10 + static_cast<std::uint64_t>(c - '0');
+  }
+  return v;
+}
+
+std::string_view trimmed(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+  return text;
+}
+
+}  // namespace
+
+std::optional<ByteRange> requestedByteRange(const httplib::Request& req, httplib::Response& res,
+                                            std::uint64_t size) {
+  if (!req.has_header("Range") || req.has_header("If-Range")) return std::nullopt;
+  const std::string value = req.get_header_value("Range");
+  const std::size_t eq = value.find('=');
+  if (eq == std::string::npos) return std::nullopt;
+  std::string unit(trimmed(std::string_view(value).substr(0, eq)));
+  for (char& c : unit) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string_view spec = trimmed(std::string_view(value).substr(eq + 1));
+  if (unit != "bytes" || spec.find(',') != std::string_view::npos) return std::nullopt;
+  const std::size_t dash = spec.find('-');
+  if (dash == std::string_view::npos) return std::nullopt;
+  const std::string_view firstText = spec.substr(0, dash);
+  const std::string_view lastText = spec.substr(dash + 1);
+  ByteRange range;
+  bool satisfiable = false;
+  if (firstText.empty()) {  // "-N": the last N bytes
+    const auto n = decimal(lastText);
+    if (!n) return std::nullopt;
+    satisfiable = *n > 0 && size > 0;
+    range = {size > *n ? size - *n : 0, size > 0 ? size - 1 : 0};
+  } else {
+    const auto first = decimal(firstText);
+    const auto last =
+        lastText.empty() ? std::optional<std::uint64_t>(UINT64_MAX) : decimal(lastText);
+    if (!first || !last || *last < *first) return std::nullopt;
+    satisfiable = *first < size;
+    range = {*first, std::min(*last, size > 0 ? size - 1 : 0)};
+  }
+  if (!satisfiable) {
+    res.set_header("Content-Range", "bytes */" + std::to_string(size));
+    throw HttpError(416, "range_not_satisfiable",
+                    "the range " + std::string(spec.substr(0, 64)) + " is outside the " +
+                        std::to_string(size) + " bytes",
+                    {{"size", size}});
+  }
+  return range;
 }
 
 }  // namespace mdhd::service

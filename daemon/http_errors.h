@@ -2,6 +2,8 @@
 // Errors of the HTTP API: {"error": {"code", "message", ...}} with a status of
 // the contract. A route handler throws HttpError; the service turns it into the
 // reply (and anything else it throws into a 500 that says nothing internal).
+#include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -49,5 +51,17 @@ nlohmann::json parseJsonBody(const httplib::Request& req);
 // A query parameter as an integer in [lo, hi] (400 otherwise), or `fallback`.
 long long queryInteger(const httplib::Request& req, const char* name, long long fallback,
                        long long lo, long long hi);
+
+// The one byte range a GET asks for with `Range: bytes=...` (RFC 9110 14.2), as
+// [first, last] of a body of `size` bytes. None: serve the whole body (no Range,
+// an If-Range (the service sends no validators), several ranges, another unit, a
+// malformed one). A range that starts at or past the end is 416
+// `range_not_satisfiable`, with `Content-Range: bytes */size` set on `res`.
+struct ByteRange {
+  std::uint64_t first = 0;
+  std::uint64_t last = 0;
+};
+std::optional<ByteRange> requestedByteRange(const httplib::Request& req, httplib::Response& res,
+                                            std::uint64_t size);
 
 }  // namespace mdhd::service

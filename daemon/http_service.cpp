@@ -215,6 +215,10 @@ void HttpService::handleUnrouted(const httplib::Request& req, httplib::Response&
   } else if (res.status == 400) {
     code = "bad_request";
     message = "the HTTP request is malformed";
+  } else if (res.status == 416) {
+    // cpp-httplib refuses a Range header it cannot parse before any route sees it.
+    code = "bad_range";
+    message = "the Range header is not a valid bytes range; send the request without it";
   }
   const int status = res.status;
   sendError(res, HttpError(status, code, message));
@@ -226,6 +230,12 @@ bool HttpService::screen(const httplib::Request& req, httplib::Response& res) {
   const Clock::time_point started = Clock::now();
   Connection* conn = currentConnection();
   if (conn != nullptr) conn->inHead = false;
+  // cpp-httplib 0.11.4 applies a Range header to every reply, errors and JSON
+  // included: a 200 with a cut body, and past the end of a streamed one a
+  // Content-Length near 2^64. Routes that serve ranges read the header themselves
+  // (requestedByteRange); the rest ignore it (RFC 9110 14.2 allows it) and say so.
+  const_cast<httplib::Request&>(req).ranges.clear();
+  if (req.method == "HEAD") res.set_header("Accept-Ranges", "none");
   const Registered* match = nullptr;
   std::string allowed;
   for (const Registered& r : routes_) {

@@ -118,17 +118,28 @@ void sendMesh(const httplib::Request& req, httplib::Response& res, JobStore& sto
   const auto size = std::filesystem::file_size(path, ec);
   auto file = std::make_shared<std::ifstream>(path, std::ios::binary);
   if (ec || !*file) throw HttpError(409, "no_mesh", "the job's mesh is gone");
-  res.status = 200;
+  // One byte range (a resumed download) is served as 206; the library's own range
+  // handling is off (HttpService::screen), it cut JSON replies and overflowed here.
+  res.headers.erase("Accept-Ranges");
+  res.set_header("Accept-Ranges", "bytes");
+  const std::optional<ByteRange> range = requestedByteRange(req, res, size);
+  const std::uintmax_t first = range ? range->first : 0;
+  const std::uintmax_t bytes = range ? range->last - range->first + 1 : size;
+  res.status = range ? 206 : 200;
+  if (range) {
+    res.set_header("Content-Range", "bytes " + std::to_string(range->first) + "-" +
+                                        std::to_string(range->last) + "/" + std::to_string(size));
+  }
   res.set_header("Content-Disposition", "attachment; filename=\"" + r.id + ".stl\"");
-  res.set_content_provider(static_cast<std::size_t>(size), "model/stl",
-                           [file](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-                             char buf[1 << 16];
-                             file->seekg(static_cast<std::streamoff>(offset));
-                             file->read(buf,
-                                        static_cast<std::streamsize>(std::min(length, sizeof buf)));
-                             const std::streamsize n = file->gcount();
-                             return n > 0 && sink.write(buf, static_cast<std::size_t>(n));
-                           });
+  res.set_content_provider(
+      static_cast<std::size_t>(bytes), "model/stl",
+      [file, first](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+        char buf[1 << 16];
+        file->seekg(static_cast<std::streamoff>(first + offset));
+        file->read(buf, static_cast<std::streamsize>(std::min(length, sizeof buf)));
+        const std::streamsize n = file->gcount();
+        return n > 0 && sink.write(buf, static_cast<std::size_t>(n));
+      });
 }
 
 nlohmann::json jobStatusSchema() {
@@ -249,12 +260,26 @@ void addJobRoutes(HttpService& http, JobStore& store, WorkerPool& pool,
        std::string(kJobs) + "/{id}/mesh",
        {{"summary", "The final stock as binary STL (mm, workpiece frame)"},
         {"tags", {"jobs"}},
+        {"parameters",
+         {{{"name", "id"}, {"in", "path"}, {"required", true}, {"schema", {{"type", "string"}}}},
+          {{"name", "Range"},
+           {"in", "header"},
+           {"description",
+            "One byte range (`bytes=0-99`, `bytes=1000-`, `bytes=-500`) resumes a download "
+            "(206); several ranges or another unit get the whole file (200)."},
+           {"schema", {{"type", "string"}}}}}},
         {"responses",
          {{"200",
            {{"description", "Binary STL."},
             {"content",
              {{"model/stl", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}}},
+          {"206",
+           {{"description", "The requested byte range (Content-Range)."},
+            {"content",
+             {{"model/stl", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}}},
           {"404", notFound},
+          {"416", errorResponse("The range starts past the end (`range_not_satisfiable`; "
+                                "Content-Range `bytes */size`).")},
           {"409", errorResponse("No mesh: not done, failed, or not written (`mesh_too_large`, "
                                 "`mesh_write_failed`).")}}}}},
       [&](const httplib::Request& req, httplib::Response& res) { sendMesh(req, res, store); });
