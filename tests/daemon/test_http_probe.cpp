@@ -1,7 +1,13 @@
 // Findings of a black-box probe of the job API, as a CAM system, an MES or a
 // post-processor author's CI script would use it: byte ranges (a resumed mesh
-// download; JSON replies must never be cut).
+// download; JSON replies must never be cut), and request metrics whose labels a
+// client cannot multiply.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <string>
@@ -113,6 +119,65 @@ TEST_F(HttpProbe, JsonRepliesAreNeverCutByARange) {
   auto head = cli->Head(("/api/v1/jobs/" + id).c_str());
   ASSERT_TRUE(head);
   EXPECT_EQ(head->get_header_value("Accept-Ranges"), "none");
+}
+
+// One raw request on its own connection; the status of the reply (0: none).
+int rawStatus(int port, const std::string& request) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    close(fd);
+    return 0;
+  }
+  std::size_t off = 0;
+  while (off < request.size()) {
+    const ssize_t n = send(fd, request.data() + off, request.size() - off, MSG_NOSIGNAL);
+    if (n <= 0) break;
+    off += static_cast<std::size_t>(n);
+  }
+  std::string reply;
+  char buf[4096];
+  pollfd p{fd, POLLIN, 0};
+  while (reply.find("\r\n") == std::string::npos && poll(&p, 1, 5000) > 0) {
+    const ssize_t n = recv(fd, buf, sizeof buf, 0);
+    if (n <= 0) break;
+    reply.append(buf, static_cast<std::size_t>(n));
+  }
+  close(fd);
+  return reply.size() > 12 ? std::atoi(reply.c_str() + 9) : 0;
+}
+
+TEST_F(HttpProbe, RequestMetricsKeepOneMethodLabelForUnknownMethods) {
+  RunningService svc(config());
+  // Any token is a method to the parser; each one was a series of its own, kept
+  // forever and sent on every scrape (no token needed to add one).
+  const int kMethods = 40;
+  for (int i = 0; i < kMethods; ++i) {
+    const std::string method = "M" + std::to_string(i) + std::string(500, 'X') + "\xff";
+    EXPECT_NE(rawStatus(svc->port(), method + " /healthz HTTP/1.1\r\nHost: x\r\n\r\n"), 0);
+  }
+  auto cli = svc.client();
+  auto r = cli->Get("/metrics");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->body.find("XXXX"), std::string::npos);
+  EXPECT_EQ(r->body.find('\xff'), std::string::npos);
+  std::size_t series = 0;
+  std::uint64_t other = 0;
+  std::size_t at = 0;
+  const std::string name = "mdhd_http_requests_total{";
+  while ((at = r->body.find(name, at)) != std::string::npos) {
+    const std::size_t end = r->body.find('\n', at);
+    const std::string line = r->body.substr(at, end - at);
+    ++series;
+    if (line.find("method=\"other\"") != std::string::npos)
+      other += std::stoull(line.substr(line.rfind(' ') + 1));
+    at = end;
+  }
+  EXPECT_LE(series, 3u) << r->body;
+  EXPECT_EQ(other, static_cast<std::uint64_t>(kMethods)) << r->body;
 }
 
 }  // namespace
