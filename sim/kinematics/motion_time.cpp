@@ -37,15 +37,39 @@ std::string where(const gcode::Motion& m) {
   return "line " + std::to_string(m.pos.line) + ": ";
 }
 
+// Under G43.4 the linear joints follow the rotaries round: their travel is the length
+// of their path, not end - start (a full table turn ends where it started, with X and
+// Y having swung through 4 radii each). Sampled every degree of rotary travel.
+double tcpJointTravel(const JointPath& path, Axis axis) {
+  double degrees = 0.0;
+  for (Axis r : {gcode::kA, gcode::kB, gcode::kC})
+    degrees = std::max(degrees, std::abs(path.endJoints()[r] - path.startJoints()[r]));
+  if (axis > gcode::kZ || degrees == 0.0) {
+    // Rotaries (and U V W) move linearly; with the rotaries still so do X Y Z.
+    return std::abs(path.endJoints()[axis] - path.startJoints()[axis]);
+  }
+  const int n = std::clamp(static_cast<int>(std::ceil(degrees)), 16, 400000);
+  double sum = 0.0;
+  double prev = path.startJoints()[axis];
+  for (int i = 1; i <= n; ++i) {
+    const double v = path.at(static_cast<double>(i) / n)[axis];
+    sum += std::abs(v - prev);
+    prev = v;
+  }
+  return sum;
+}
+
 double rapidMinutes(const gcode::Motion& m, const Kinematics& kin, double tool_length) {
   const double rapid = kin.machine().rapid_feed;
   if (!(rapid > 0.0)) throw MotionTimeError(where(m) + "the machine has no rapid_feed");
-  // Under G43.4 the joints' travel differs from the motion's values: solve the ends.
+  // Under G43.4 the joints' travel differs from the motion's values: solve the path.
   const JointPath path(kin, m, tool_length);
   double longest = 0.0;
   for (int a = 0; a < gcode::kAxisCount; ++a) {
     if (!kin.hasAxis(static_cast<Axis>(a))) continue;
-    longest = std::max(longest, std::abs(path.endJoints()[a] - path.startJoints()[a]));
+    const double travel = path.tcp() ? tcpJointTravel(path, static_cast<Axis>(a))
+                                     : std::abs(path.endJoints()[a] - path.startJoints()[a]);
+    longest = std::max(longest, travel);
   }
   return longest / rapid;
 }

@@ -7,7 +7,9 @@
 // Rules, in minutes:
 // - G0: max over the joints of |travel| / rapid_feed (linear joints in mm, rotary in
 //   degrees, each at rapid_feed): each joint at most at rapid speed, the slowest
-//   decides, as LinuxCNC's rapid with one velocity for every axis.
+//   decides, as LinuxCNC's rapid with one velocity for every axis. Under G43.4 a
+//   linear joint's travel is the length of its solved path (sampled every degree of
+//   rotary travel), not end - start.
 // - G1/G2/G3 under G94: the programmed path length / min(F, max_feed). The length is
 //   that of X Y Z (arcs: the helical length, radius averaged over the sweep); when X
 //   Y Z do not move, that of U V W; when neither moves, the rotary travel

@@ -47,6 +47,26 @@ TEST(MotionTime, RapidTakesAsLongAsTheSlowestJoint) {
   EXPECT_EQ(motionSeconds(move(MotionType::kRapid, at(1, 2, 3), at(1, 2, 3)), ac, 50), 0.0);
 }
 
+// Under G43.4 with the tip 200 mm off the C axis, X = 200 cos C and Y = 200 sin C in the
+// machine. A rapid half turn moves X 400 mm (Y 0 -> 200 -> 0: 400 too): 1.2 s at
+// 20000 mm/min. A full turn ends where it started, but X and Y each travel 4 x 200 =
+// 800 mm: 2.4 s. It was 1.08 s (C's 360 degrees), faster than the half turn.
+TEST(MotionTime, TcpRapidCountsTheJointsWholePath) {
+  const Kinematics ac = machine(presets::acTrunnion(), 20000, 10000);
+  Motion half = move(MotionType::kRapid, at(200, 0, 0), at(200, 0, 0, 0, 180));
+  half.tcp = true;
+  EXPECT_NEAR(motionSeconds(half, ac, 50), 1.2, 1e-9);
+  Motion full = half;
+  full.end = at(200, 0, 0, 0, 360);
+  EXPECT_NEAR(motionSeconds(full, ac, 50), 2.4, 1e-9);
+  // Tilting A -90 -> 0 with the tip at (0, 0, 100) in W: the tip in the machine is
+  // R_x(A) (0, 0, 100) = (0, -100 sin A, 100 cos A): Y 100 -> 0, Z 0 -> 100 (+50 of
+  // tool), each 100 mm, monotonic: 0.3 s, the same as end - start.
+  Motion tilt = move(MotionType::kRapid, at(0, 0, 100, -90), at(0, 0, 100, 0));
+  tilt.tcp = true;
+  EXPECT_NEAR(motionSeconds(tilt, ac, 50), 0.3, 1e-9);
+}
+
 TEST(MotionTime, FeedOverTheLinearPathCappedAtMaxFeed) {
   const Kinematics ac = machine(presets::acTrunnion(), 20000, 10000);
   // 3-4-5: 50 mm at 600 mm/min = 5 s
