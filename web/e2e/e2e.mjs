@@ -1,0 +1,365 @@
+// End-to-end test of the browser UI: a real `mdhd serve` (MDHD_BIN), Debian's
+// chromium driven by playwright-core. Exit status 0 when every step passed.
+//
+//   MDHD_BIN=build/bin/mdhd node web/e2e/e2e.mjs
+//
+// Environment: MDHD_BIN (required), CHROMIUM (default /usr/bin/chromium),
+// MDHD_EXAMPLES (default ../shared/examples beside the repository),
+// E2E_HEADED=1 to watch, E2E_SKIP_SHADOW=1 to leave out the shadow step.
+import { spawn } from "node:child_process";
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+import { fileURLToPath } from "node:url";
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const webDir = path.resolve(here, "..");
+const examples = process.env.MDHD_EXAMPLES ?? path.resolve(webDir, "../../shared/examples");
+const chromiumPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
+const TOKEN = "e2e-token-0123456789abcdef";
+const started = Date.now();
+
+function die(message) {
+  console.error(`web_e2e: ${message}`);
+  process.exit(1);
+}
+
+// Prerequisites: fail (not skip) saying what is missing.
+const mdhdBin = process.env.MDHD_BIN;
+if (!mdhdBin) die("MDHD_BIN is not set: point it at the mdhd executable (ctest sets it).");
+if (!existsSync(mdhdBin)) die(`MDHD_BIN=${mdhdBin} does not exist: build the mdhd target first.`);
+if (!existsSync(chromiumPath)) die(`no chromium at ${chromiumPath}: install Debian's package (apt-get install chromium, scripts/install-deps.sh does) or set CHROMIUM.`);
+if (!existsSync(path.join(examples, "crash-3axis.json"))) die(`no example jobs in ${examples}: set MDHD_EXAMPLES.`);
+let chromium;
+try {
+  ({ chromium } = await import(path.join(webDir, "node_modules/playwright-core/index.mjs")));
+} catch {
+  die("playwright-core is not installed in web/node_modules: run `npm ci --prefix web` (scripts/test.sh does).");
+}
+
+const children = [];
+const temps = [];
+function cleanup() {
+  for (const c of children) if (c.exitCode === null && c.signalCode === null) c.kill("SIGKILL");
+  for (const t of temps) rmSync(t, { recursive: true, force: true });
+}
+process.on("exit", cleanup);
+for (const sig of ["SIGINT", "SIGTERM"]) process.on(sig, () => process.exit(1));
+
+// Starts a process and resolves with the first stdout line matching `pattern`.
+function startProcess(args, pattern, what) {
+  return new Promise((resolve, reject) => {
+    const child = spawn(mdhdBin, args, { stdio: ["ignore", "pipe", "pipe"] });
+    children.push(child);
+    let out = "", err = "";
+    const timer = setTimeout(() => reject(new Error(`${what} did not start in 10 s: ${out}${err}`)), 10000);
+    child.stdout.on("data", (d) => {
+      out += d;
+      const m = pattern.exec(out);
+      if (m) {
+        clearTimeout(timer);
+        resolve({ child, match: m });
+      }
+    });
+    child.stderr.on("data", (d) => { err += d; });
+    child.on("exit", (code) => {
+      clearTimeout(timer);
+      reject(new Error(`${what} exited with ${code}: ${err.trim().slice(-500)}`));
+    });
+  });
+}
+
+async function startService(extra = []) {
+  const dir = mkdtempSync(path.join(tmpdir(), "mdhd-e2e-"));
+  temps.push(dir);
+  const { child, match } = await startProcess(["serve", "--port", "0", "--data-dir", dir, "--workers", "2", ...extra],
+    /listening on ([0-9.]+):([0-9]+)/, "mdhd serve");
+  return { child, base: `http://${match[1]}:${match[2]}` };
+}
+
+let passed = 0;
+const failures = [];
+async function step(name, fn) {
+  const t0 = Date.now();
+  try {
+    await fn();
+    passed++;
+    console.log(`ok - ${name} (${Date.now() - t0} ms)`);
+  } catch (err) {
+    failures.push(name);
+    console.log(`not ok - ${name} (${Date.now() - t0} ms)\n  ${String(err?.stack ?? err).split("\n").slice(0, 6).join("\n  ")}`);
+  }
+}
+function assert(cond, message) {
+  if (!cond) throw new Error(message);
+}
+function equal(actual, expected, message) {
+  const a = JSON.stringify(actual), e = JSON.stringify(expected);
+  if (a !== e) throw new Error(`${message}: got ${a}, expected ${e}`);
+}
+
+// A page that fails the test on any script error or Content-Security-Policy violation.
+async function newPage(browser, options = {}) {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 }, ...options });
+  const page = await context.newPage();
+  page.problems = [];
+  page.on("pageerror", (e) => page.problems.push(`page error: ${e.message}`));
+  page.on("console", (m) => {
+    if (m.type() === "error" && !/Failed to load resource/.test(m.text())) page.problems.push(`console error: ${m.text()}`);
+    if (/Content Security Policy/i.test(m.text())) page.problems.push(`CSP: ${m.text()}`);
+  });
+  page.on("dialog", (d) => d.accept());
+  page.setDefaultTimeout(15000);
+  return page;
+}
+function noProblems(page) {
+  assert(page.problems.length === 0, page.problems.join("\n"));
+}
+
+const service = await startService();
+const browser = await chromium.launch({
+  executablePath: chromiumPath,
+  headless: !process.env.E2E_HEADED,
+  args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-gpu-sandbox"],
+});
+
+try {
+  const page = await newPage(browser);
+  let jobId = null;
+
+  await step("New check: the crash example's job, machine and program files submitted through the form", async () => {
+    await page.goto(`${service.base}/#/new`);
+    await page.setInputFiles("#files", ["crash-3axis.json", "machine-3axis.json", "crash-3axis.ngc"].map((f) => path.join(examples, f)));
+    await page.waitForSelector(".loaded li >> nth=2");
+    const loaded = await page.locator(".loaded li").allTextContents();
+    equal(loaded, ["Job: crash-3axis.json", "Machine: machine-3axis.json", "Program: crash-3axis.ngc"], "loaded files");
+    assert(await page.isChecked("#mode-json"), "an opened machine file selects Machine JSON");
+    equal(await page.inputValue("#density"), "5", "density from the job's options");
+    assert((await page.inputValue("#program")).includes("G1 Z-25 F200"), "program text loaded");
+    await page.click("#submit-check");
+    await page.waitForURL(/#\/jobs\/[0-9a-f]{32}$/);
+    jobId = page.url().split("/").pop();
+    noProblems(page);
+  });
+
+  await step("Job detail: verdict and collisions table as the example's README says", async () => {
+    await page.waitForSelector('.verdict[data-verdict="collisions"]', { timeout: 30000 });
+    const title = await page.textContent(".verdict-title");
+    const rows = await page.$$eval(".collisions-table tbody tr", (trs) => trs.map((tr) => [tr.dataset.type, tr.dataset.line, tr.cells[0].textContent, tr.cells[1].textContent]));
+    equal(rows.map((r) => [r[0], r[1]]), [["rapid_into_stock", "7"], ["holder_contact", "11"], ["shank_contact", "12"]], "collision types and lines");
+    equal(rows.map((r) => r[2]), ["Rapid into stock", "Holder contact", "Shank contact"], "type labels shown");
+    assert(rows[1][3].startsWith("11"), `the holder line cell shows 11: ${rows[1][3]}`);
+    equal(title, "3 collisions", "verdict title");
+    const stats = await page.textContent(".fact-groups");
+    assert(/Blocks\s*17/.test(stats), `stats show the blocks: ${stats.slice(0, 200)}`);
+    noProblems(page);
+  });
+
+  await step("3D view: data-triangles equals the STL's triangle count, drawn without GL errors", async () => {
+    const stl = await (await page.request.get(`${service.base}/api/v1/jobs/${jobId}/mesh`)).body();
+    const count = stl.readUInt32LE(80);
+    assert(count > 1000 && stl.length === 84 + 50 * count, `a whole STL (${count} triangles, ${stl.length} bytes)`);
+    await page.waitForSelector('canvas.viewer-canvas[data-state="drawn"]', { timeout: 20000 });
+    const canvas = page.locator("canvas.viewer-canvas");
+    equal(Number(await canvas.getAttribute("data-triangles")), count, "triangles drawn");
+    equal(await canvas.getAttribute("data-gl-error"), null, "GL error");
+    // Turn and zoom it with the mouse: still drawn, no errors.
+    const box = await canvas.boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width / 2 + 80, box.y + box.height / 2 + 30, { steps: 4 });
+    await page.mouse.up();
+    await page.mouse.wheel(0, -200);
+    await page.waitForTimeout(100);
+    equal(Number(await canvas.getAttribute("data-triangles")), count, "triangles drawn after orbit and zoom");
+    noProblems(page);
+  });
+
+  await step("Clicking a collision highlights its program line and its marker", async () => {
+    await page.click('.collisions-table tr[data-type="holder_contact"]');
+    await page.waitForSelector('.program .pl.hl[data-line="11"]');
+    assert((await page.textContent(".program .pl.hl")).includes("G1 Z-25 F200"), "line 11's text highlighted");
+    equal(await page.locator(".program .pl.hl").count(), 1, "one highlighted line");
+    equal(await page.getAttribute('.collisions-table tr[data-type="holder_contact"]', "aria-selected"), "true", "row selected");
+    equal(await page.getAttribute("canvas.viewer-canvas", "data-highlight"), "1", "marker highlighted");
+    // The keyboard does the same.
+    await page.focus('.collisions-table tr[data-type="rapid_into_stock"]');
+    await page.keyboard.press("Enter");
+    await page.waitForSelector('.program .pl.hl[data-line="7"]');
+    assert((await page.textContent(".program .pl.hl")).includes("G0 Z-1"), "line 7's text highlighted");
+    equal(await page.getAttribute("canvas.viewer-canvas", "data-highlight"), "0", "marker 0 highlighted");
+    assert(await page.locator(".program .pl.hl").isVisible(), "the highlighted line is scrolled into view");
+    noProblems(page);
+  });
+
+  await step("Jobs list shows the job as done, newest first", async () => {
+    await page.click('nav a[data-section="jobs"]');
+    await page.waitForSelector(`table.jobs tr[data-id="${jobId}"]`);
+    equal(await page.getAttribute(`table.jobs tr[data-id="${jobId}"] .badge`, "data-status"), "done", "status");
+    equal(await page.getAttribute('a[data-section="jobs"]', "aria-current"), "page", "the Jobs tab is current");
+    noProblems(page);
+  });
+
+  await step("A program that does not interpret: 422 shown with its line and column highlighted", async () => {
+    await page.goto(`${service.base}/#/new`);
+    await page.check("#mode-registered");
+    await page.waitForSelector('#machine-select option[value="3axis-mill"]', { state: "attached" });
+    await page.selectOption("#machine-select", "3axis-mill");
+    await page.fill("#program", "G21 G90\nT1 M6\nG1 X10 Q\nM30\n");
+    await page.fill("#job-json", JSON.stringify({ tools: [{ number: 1, shape: "flat", diameter: 6, flute_length: 20, length: 50 }], stock: { box: { min: [0, 0, -20], max: [50, 50, 0] } } }));
+    await page.fill("#density", "5");
+    await page.click("#submit-check");
+    await page.waitForSelector(".submit-result .notice.error");
+    const text = await page.textContent(".submit-result .notice.error");
+    assert(/does not interpret/.test(text) && /Program line 3, column 9/.test(text) && /HTTP 422/.test(text), `error box: ${text}`);
+    await page.waitForSelector('.program-error .pl.hl[data-line="3"]');
+    // Column 9 is just past "G1 X10 Q" (the value Q lacks): the mark sits after the Q.
+    equal(await page.getAttribute(".program-error .pl.hl mark.column", "title"), "column 9", "column 9 marked");
+    equal(await page.evaluate(() => document.querySelector(".program-error .pl.hl mark.column").previousSibling.textContent), "G1 X10 Q", "text before the mark");
+    assert(/#\/new$/.test(page.url()), "stays on the form");
+    noProblems(page);
+  });
+
+  await step("A bad field: 400 shown with the service's message and field", async () => {
+    await page.fill("#program", "M30\n");
+    await page.fill("#job-json", JSON.stringify({ tools: [{ number: 1, shape: "flat", diameter: "x", flute_length: 20, length: 50 }], stock: { box: { min: [0, 0, -20], max: [50, 50, 0] } } }));
+    await page.click("#submit-check");
+    await page.waitForFunction(() => /tools\[0\]\.diameter/.test(document.querySelector(".submit-result")?.textContent ?? ""));
+    const text = await page.textContent(".submit-result .notice.error");
+    assert(/expected a number/.test(text) && /HTTP 400/.test(text), `error box: ${text}`);
+    await page.fill("#job-json", "{\n  \"tools\": [],\n  oops\n}");
+    await page.click("#submit-check");
+    await page.waitForFunction(() => /not valid JSON at line 3, column 3/.test(document.querySelector(".submit-result")?.textContent ?? ""));
+    noProblems(page);
+  });
+
+  await step("Machines: the presets listed; one copied, registered by PUT, and deleted", async () => {
+    await page.goto(`${service.base}/#/machines`);
+    await page.waitForSelector("table.machines tr[data-name]");
+    const names = await page.$$eval("table.machines tr[data-name]", (trs) => trs.map((t) => t.dataset.name));
+    for (const preset of ["3axis-mill", "ac-trunnion", "bc-trunnion", "bc-head-table", "ab-head-head", "bc-head-head", "nutating-b45"]) {
+      assert(names.includes(preset), `preset ${preset} listed in ${names}`);
+    }
+    await page.click('table.machines a:text-is("ac-trunnion")');
+    await page.waitForFunction(() => document.querySelector("#machine-editor")?.value.includes("workpiece_chain"));
+    await page.click('a:text("Copy as a new machine")');
+    await page.waitForFunction(() => document.querySelector("#machine-name")?.value === "ac-trunnion-copy");
+    await page.waitForFunction(() => document.querySelector("#machine-editor")?.value.includes("workpiece_chain"));
+    await page.fill("#machine-name", "e2e-mill");
+    await page.click('button:text("Register")');
+    await page.waitForURL(/#\/machines\/e2e-mill$/);
+    const put = await (await page.request.get(`${service.base}/api/v1/machines/e2e-mill`)).json();
+    assert(Array.isArray(put.joints) && put.joints.length === 5, "registered with its 5 joints");
+    // A broken edit is refused locally with its place.
+    await page.waitForFunction(() => document.querySelector("#machine-editor")?.value.includes("workpiece_chain"));
+    await page.fill("#machine-editor", "{\n  \"joints\": [,]\n}");
+    await page.click('button:text("Save changes")');
+    await page.waitForFunction(() => /not valid JSON at line 2, column 14/.test(document.querySelector(".errors")?.textContent ?? ""));
+    await page.click('button:text("Delete")');
+    await page.waitForURL(/#\/machines$/);
+    await page.waitForSelector('table.machines tr[data-name="3axis-mill"]');
+    equal(await page.locator('table.machines tr[data-name="e2e-mill"]').count(), 0, "deleted machine gone");
+    noProblems(page);
+  });
+
+  await step("Tablet: big touch targets and one column", async () => {
+    const tablet = await newPage(browser, { viewport: { width: 820, height: 1180 }, hasTouch: true, isMobile: true });
+    await tablet.goto(`${service.base}/#/jobs/${jobId}`);
+    await tablet.waitForSelector('canvas.viewer-canvas[data-state="drawn"]', { timeout: 20000 });
+    for (const sel of ['nav a[data-section="new"]', ".collisions-table tbody tr", "#token-button", ".viewer-tools button"]) {
+      const b = await tablet.locator(sel).first().boundingBox();
+      assert(b && b.height >= 40, `${sel} is ${b?.height} px tall`);
+    }
+    const program = await tablet.locator(".program").boundingBox();
+    const viewer = await tablet.locator("canvas.viewer-canvas").boundingBox();
+    assert(viewer.y > program.y + program.height - 1, "program and 3D view stacked");
+    await tablet.tap('.collisions-table tr[data-type="shank_contact"]');
+    await tablet.waitForSelector('.program .pl.hl[data-line="12"]');
+    noProblems(tablet);
+    await tablet.context().close();
+  });
+
+  await step("A service with a token: the UI asks for it (a wrong one again), then works and keeps it", async () => {
+    const guarded = await startService(["--token", TOKEN]);
+    const p = await newPage(browser);
+    await p.goto(`${guarded.base}/#/machines`);
+    await p.waitForSelector("#token-dialog[open]");
+    assert(/needs an access token/.test(await p.textContent("#token-reason")), "the dialog says why");
+    await p.fill("#token-input", "wrong-token-0123456789");
+    await p.click('#token-form button[value="save"]');
+    await p.waitForFunction(() => document.querySelector("#token-dialog")?.open && /not accepted/.test(document.querySelector("#token-reason").textContent));
+    await p.fill("#token-input", TOKEN);
+    await p.click('#token-form button[value="save"]');
+    await p.waitForSelector('table.machines tr[data-name="3axis-mill"]');
+    equal(await p.evaluate(() => localStorage.getItem("mdhd.token")), TOKEN, "token kept");
+    await p.reload();
+    await p.waitForSelector('table.machines tr[data-name="3axis-mill"]');
+    assert(!(await p.evaluate(() => document.querySelector("#token-dialog").open)), "no dialog once the token is kept");
+    // Cancelling leaves the service's 401 message on the page.
+    await p.evaluate(() => localStorage.clear());
+    await p.goto(`${guarded.base}/#/jobs`);
+    await p.reload();
+    await p.waitForSelector("#token-dialog[open]");
+    await p.click('#token-form button[value="cancel"]');
+    await p.waitForSelector(".errors .notice.error");
+    assert(/HTTP 401/.test(await p.textContent(".errors .notice.error")), "the 401 is shown");
+    noProblems(p);
+    await p.context().close();
+    guarded.child.kill("SIGTERM");
+  });
+
+  if (!process.env.E2E_SKIP_SHADOW) {
+    await step("Shadow against mdhd modbus-sim: live state, joints, alarms, live mesh, stop", async () => {
+      const sim = await startProcess(["modbus-sim", path.join(examples, "crash-3axis.json"), "--port", "0", "--speed", "20", "--loop"],
+        /listening on [0-9.]+:([0-9]+)/, "mdhd modbus-sim");
+      const simPort = Number(sim.match[1]);
+      const machine = JSON.parse(readFileSync(path.join(examples, "machine-3axis.json"), "utf8"));
+      const job = JSON.parse(readFileSync(path.join(examples, "crash-3axis.json"), "utf8"));
+      const doc = {
+        machine, tools: job.tools, stock: job.stock, options: { density: 2 },
+        program: readFileSync(path.join(examples, "crash-3axis.ngc"), "utf8"),
+        modbus: {
+          host: "127.0.0.1", port: simPort, poll_hz: 50, timeout_ms: 500,
+          joints: { X: { address: 0, type: "float32" }, Y: { address: 2, type: "float32" }, Z: { address: 4, type: "float32" } },
+          tool: { address: 6, type: "uint16" }, spindle_on: { address: 7, type: "uint16" }, line: { address: 8, type: "uint32" },
+        },
+      };
+      await page.goto(`${service.base}/#/shadows`);
+      await page.fill("#shadow-json", JSON.stringify(doc, null, 2));
+      await page.click('button:text("Start shadowing")');
+      await page.waitForURL(/#\/shadows\/sh-[0-9a-f]+$/);
+      const t0 = Date.now();
+      const mark = (what) => console.log(`  ${what} after ${Date.now() - t0} ms`);
+      await page.waitForSelector('.shadow-state[data-state="live"]', { timeout: 10000 });
+      mark("live");
+      await page.waitForSelector(".stream-note:text('live events')");
+      // Joints move with the events.
+      const z1 = await page.textContent('.joint[data-axis="Z"]');
+      await page.waitForFunction((z) => document.querySelector('.joint[data-axis="Z"]')?.textContent !== z, z1, { timeout: 10000 });
+      // The crash raises alarms live.
+      mark("joints moving");
+      await page.waitForSelector('table.alarms tr[data-type="rapid_into_stock"]', { timeout: 20000 });
+      mark("alarm");
+      await page.waitForSelector('canvas.viewer-canvas[data-state="drawn"]', { timeout: 10000 });
+      assert(Number(await page.getAttribute("canvas.viewer-canvas", "data-triangles")) > 0, "live mesh drawn");
+      mark("mesh");
+      await page.click('button:text("Stop shadowing")');
+      await page.waitForSelector('.shadow-state[data-state="stopped"]');
+      mark("stopped");
+      await page.click('a:text("All shadows")');
+      await page.waitForSelector('table.shadows tr[data-state="stopped"]');
+      noProblems(page);
+      sim.child.kill("SIGTERM");
+    });
+  }
+} finally {
+  await browser.close().catch(() => {});
+  cleanup();
+}
+
+const seconds = ((Date.now() - started) / 1000).toFixed(1);
+console.log(`web_e2e: ${passed} passed, ${failures.length} failed in ${seconds} s`);
+if (failures.length) {
+  console.log(`failed: ${failures.join("; ")}`);
+  process.exit(1);
+}
