@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,7 +47,7 @@ struct LoopPoint {
 class Mesher {
  public:
   Mesher(const StockView& view, MeshSink& sink, MeshStats& stats)
-      : view_(view), sink_(sink), stats_(stats) {}
+      : view_(view), sink_(sink), stats_(stats), margin_(crossingMargin(view)) {}
 
   void interior(int leaf);
   void exterior(int leaf);
@@ -78,6 +79,7 @@ class Mesher {
   const StockView& view_;
   MeshSink& sink_;
   MeshStats& stats_;
+  const double margin_;  // crossingMargin(view_)
   // The owner of a vertex: the leaf being meshed, else the last other owner met
   // (the leaf across a face owns runs of vertices), else a search.
   int vertexOwner(const GridPoint& p) {
@@ -141,9 +143,9 @@ double Mesher::edgeT(const GridPoint& p, int axis, bool startSolid, bool owned) 
     // (not remembered: counted each time, as before the memo).
     ++stats_.fallbackCrossings;
     t = startSolid ? 0.0 : 1.0;
-    return std::clamp(t, kCrossingMargin, 1.0 - kCrossingMargin);
+    return std::clamp(t, margin_, 1.0 - margin_);
   }
-  t = std::clamp(t, kCrossingMargin, 1.0 - kCrossingMargin);
+  t = std::clamp(t, margin_, 1.0 - margin_);
   memo = {where, axis, t};
   return t;
 }
@@ -731,6 +733,17 @@ std::int64_t workOf(const LeafInfo& l, const GridPoint& n) {
 }
 
 }  // namespace
+
+double crossingMargin(const StockView& view) {
+  double far = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = view.origin()[a];
+    far = std::max({far, std::abs(lo), std::abs(lo + view.cubes()[a] * view.spacing())});
+  }
+  const float f = static_cast<float>(far);
+  const double step = double(std::nextafter(f, std::numeric_limits<float>::infinity())) - double(f);
+  return std::clamp(kCrossingFloatSteps * step / view.spacing(), kCrossingMargin, 0.25);
+}
 
 MeshStats meshStock(const StockView& view, MeshSink& sink, const MeshOptions& options) {
   if (options.region) {

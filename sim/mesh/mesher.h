@@ -21,6 +21,17 @@ class StockView;
 // Crossings are kept this far (grid units) from the edge's ends, so no
 // triangle collapses where the surface passes through a grid vertex.
 inline constexpr double kCrossingMargin = 1e-3;
+// ... and at least this many float32 steps at the stock's farthest coordinate
+// from W's origin. STL stores vertices as float32, whose step is 6.1e-5 mm from
+// 512 mm on (3.1e-5 from 256, 1.5e-5 from 128): more than 1e-3 grid units at
+// density 20 from 512 mm, at density 50 from 256, at 100 from 128. Crossings
+// that close to their grid vertex were written onto it or beside it (zero-area
+// triangles, edges of four triangles, facet normals off by up to 45 degrees).
+inline constexpr double kCrossingFloatSteps = 8.0;
+// The margin the mesher keeps for this view (grid units): kCrossingMargin, or
+// kCrossingFloatSteps float32 steps if larger (at most 0.25): at density 10
+// larger from 128 mm (1.2e-3), at density 50 from 32 mm.
+double crossingMargin(const StockView& view);
 
 struct MeshOptions {
   // Only the cells overlapping this box (mm, W), for viewers. The result is
