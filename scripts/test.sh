@@ -5,6 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 jobs=$(nproc 2>/dev/null || echo 2)
+# The browser UI's test tools (web/package-lock.json: playwright-core, no browser download).
+npm ci --prefix web --no-audit --no-fund --loglevel=error >/dev/null
 
 echo "== build (RelWithDebInfo, warnings as errors)"
 bash scripts/build.sh release

@@ -15,6 +15,8 @@ export class ProgramView {
     this.spacer = h("div", { class: "program-spacer" });
     this.spacer.style.height = `${this.lines.length * LINE_PX}px`;
     this.el = h("div", { class: "program", role: "region", tabindex: "0", "aria-label": `${label}, ${this.lines.length} lines` }, this.spacer);
+    // A short program gets a box its size, not a screenful of blank lines.
+    if (this.lines.length <= 16) this.el.style.height = `${this.lines.length * LINE_PX + 4}px`;
     this.digits = String(this.lines.length).length;
     this.el.style.setProperty("--digits", String(this.digits));
     this.el.addEventListener("scroll", () => this.schedule());

@@ -88,7 +88,7 @@ export function renderNewCheck(main, route, signal) {
   machineSelect.addEventListener("change", () => { kept.machineName = machineSelect.value; });
   setMode(kept.machineMode);
   const countLines = () => {
-    const n = programText.value === "" ? 0 : programText.value.split(/\r\n|\n/).length;
+    const n = programText.value === "" ? 0 : programText.value.replace(/\r?\n$/, "").split(/\r\n|\n/).length;
     programInfo.textContent = n ? `${n} lines` : "";
   };
   countLines();

@@ -78,8 +78,9 @@ export function renderShadow(main, route, signal) {
 
   const drawAlarms = () => {
     const list = [...s.alarms.values()].sort((a, b) => (a.id ?? 0) - (b.id ?? 0));
+    // Newest first: the alarm that matters at the machine is the latest.
     fill(alarmsBody, list.length
-      ? list.map((a) => h("tr", { class: a.kind === "predicted" ? "predicted" : "collision", dataset: { id: String(a.id), type: a.type } },
+      ? [...list].reverse().map((a) => h("tr", { class: a.kind === "predicted" ? "predicted" : "collision", dataset: { id: String(a.id), type: a.type } },
           h("td", { class: "num" }, String(a.id ?? "")),
           h("td", {}, a.kind === "predicted" ? `predicted${typeof a.time_to_contact_s === "number" ? ` in ${formatNumber(a.time_to_contact_s, 1)} s` : ""}` : "collision"),
           h("td", {}, h("span", { class: `ctype ${a.type}` }, collisionLabel(a.type))),

@@ -5,7 +5,8 @@
 //
 // Environment: MDHD_BIN (required), CHROMIUM (default /usr/bin/chromium),
 // MDHD_EXAMPLES (default ../shared/examples beside the repository),
-// E2E_HEADED=1 to watch, E2E_SKIP_SHADOW=1 to leave out the shadow step.
+// E2E_HEADED=1 to watch, E2E_SKIP_SHADOW=1 to leave out the shadow step,
+// E2E_SCREENSHOTS=DIR to save a screenshot of each page as the test sees it.
 import { spawn } from "node:child_process";
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -112,6 +113,9 @@ async function newPage(browser, options = {}) {
   page.setDefaultTimeout(15000);
   return page;
 }
+async function shot(page, name) {
+  if (process.env.E2E_SCREENSHOTS) await page.screenshot({ path: path.join(process.env.E2E_SCREENSHOTS, `${name}.png`), fullPage: true });
+}
 function noProblems(page) {
   assert(page.problems.length === 0, page.problems.join("\n"));
 }
@@ -188,6 +192,7 @@ try {
     await page.waitForSelector('.program .pl.hl[data-line="7"]');
     assert((await page.textContent(".program .pl.hl")).includes("G0 Z-1"), "line 7's text highlighted");
     equal(await page.getAttribute("canvas.viewer-canvas", "data-highlight"), "0", "marker 0 highlighted");
+    await shot(page, "job");
     assert(await page.locator(".program .pl.hl").isVisible(), "the highlighted line is scrolled into view");
     noProblems(page);
   });
@@ -217,6 +222,7 @@ try {
     equal(await page.getAttribute(".program-error .pl.hl mark.column", "title"), "column 9", "column 9 marked");
     equal(await page.evaluate(() => document.querySelector(".program-error .pl.hl mark.column").previousSibling.textContent), "G1 X10 Q", "text before the mark");
     assert(/#\/new$/.test(page.url()), "stays on the form");
+    await shot(page, "program-error");
     noProblems(page);
   });
 
@@ -240,6 +246,7 @@ try {
     for (const preset of ["3axis-mill", "ac-trunnion", "bc-trunnion", "bc-head-table", "ab-head-head", "bc-head-head", "nutating-b45"]) {
       assert(names.includes(preset), `preset ${preset} listed in ${names}`);
     }
+    await shot(page, "machines");
     await page.click('table.machines a:text-is("ac-trunnion")');
     await page.waitForFunction(() => document.querySelector("#machine-editor")?.value.includes("workpiece_chain"));
     await page.click('a:text("Copy as a new machine")');
@@ -275,6 +282,7 @@ try {
     assert(viewer.y > program.y + program.height - 1, "program and 3D view stacked");
     await tablet.tap('.collisions-table tr[data-type="shank_contact"]');
     await tablet.waitForSelector('.program .pl.hl[data-line="12"]');
+    await shot(tablet, "tablet-job");
     noProblems(tablet);
     await tablet.context().close();
   });
@@ -284,6 +292,7 @@ try {
     const p = await newPage(browser);
     await p.goto(`${guarded.base}/#/machines`);
     await p.waitForSelector("#token-dialog[open]");
+    await shot(p, "token");
     assert(/needs an access token/.test(await p.textContent("#token-reason")), "the dialog says why");
     await p.fill("#token-input", "wrong-token-0123456789");
     await p.click('#token-form button[value="save"]');
@@ -343,6 +352,7 @@ try {
       await page.waitForSelector('canvas.viewer-canvas[data-state="drawn"]', { timeout: 10000 });
       assert(Number(await page.getAttribute("canvas.viewer-canvas", "data-triangles")) > 0, "live mesh drawn");
       mark("mesh");
+      await shot(page, "shadow");
       await page.click('button:text("Stop shadowing")');
       await page.waitForSelector('.shadow-state[data-state="stopped"]');
       mark("stopped");
