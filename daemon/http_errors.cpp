@@ -107,6 +107,23 @@ long long queryInteger(const httplib::Request& req, const char* name, long long 
   return *v;
 }
 
+void checkQueryParameters(const httplib::Request& req,
+                          std::initializer_list<std::string_view> known) {
+  std::string names;
+  for (std::string_view k : known) names += (names.empty() ? "" : ", ") + std::string(k);
+  for (const auto& [name, value] : req.params) {
+    const std::string shown = name.substr(0, 64);
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      throw HttpError(400, "bad_parameter",
+                      "unknown query parameter " + shown + " (known: " + names + ")",
+                      {{"parameter", shown}});
+    }
+    if (req.get_param_value_count(name.c_str()) > 1) {
+      throw HttpError(400, "bad_parameter", name + ": given more than once", {{"parameter", name}});
+    }
+  }
+}
+
 namespace {
 
 // Up to 19 decimal digits (no sign, no spaces) as a number.

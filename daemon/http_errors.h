@@ -3,9 +3,11 @@
 // the contract. A route handler throws HttpError; the service turns it into the
 // reply (and anything else it throws into a 500 that says nothing internal).
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -51,6 +53,12 @@ nlohmann::json parseJsonBody(const httplib::Request& req);
 // A query parameter as an integer in [lo, hi] (400 otherwise), or `fallback`.
 long long queryInteger(const httplib::Request& req, const char* name, long long fallback,
                        long long lo, long long hi);
+
+// 400 `bad_parameter` for a query parameter not in `known` or given twice: an
+// `offset` or a `status` filter the route does not have must not be ignored (a
+// script paging by offset got the first page again and again).
+void checkQueryParameters(const httplib::Request& req,
+                          std::initializer_list<std::string_view> known);
 
 // The one byte range a GET asks for with `Range: bytes=...` (RFC 9110 14.2), as
 // [first, last] of a body of `size` bytes. None: serve the whole body (no Range,

@@ -221,8 +221,10 @@ void addJobRoutes(HttpService& http, JobStore& store, WorkerPool& pool,
                                 {"properties",
                                  {{"jobs", {{"type", "array"}, {"items", schemaRef("JobStatus")}}},
                                   {"next_cursor", {{"type", {"string", "null"}}}}}}})},
-          {"400", errorResponse("Bad limit or cursor.")}}}}},
+          {"400", errorResponse("Bad, repeated or unknown query parameter (`parameter` "
+                                "names it).")}}}}},
       [&](const httplib::Request& req, httplib::Response& res) {
+        checkQueryParameters(req, {"limit", "cursor"});
         const int limit = static_cast<int>(queryInteger(req, "limit", 20, 1, 100));
         const std::int64_t cursor = queryInteger(req, "cursor", 0, 1, INT64_MAX);
         const std::vector<JobRecord> page = store.jobs(limit + 1, cursor);

@@ -121,6 +121,34 @@ TEST_F(HttpProbe, JsonRepliesAreNeverCutByARange) {
   EXPECT_EQ(head->get_header_value("Accept-Ranges"), "none");
 }
 
+TEST_F(HttpProbe, TheJobListRefusesQueryParametersItDoesNotHave) {
+  RunningService svc(config());
+  auto cli = svc.client();
+  for (int i = 0; i < 3; ++i) {
+    auto r = cli->Post("/api/v1/jobs", tinyJob(i).dump(), "application/json");
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 202);
+  }
+  // A script paging by offset, or filtering by status, was given the first page of
+  // everything, as if the parameter had worked.
+  for (const std::string& query : {std::string("limit=1&offset=1"), std::string("status=failed"),
+                                   std::string("limit=1&limit=2"), std::string("Limit=1")}) {
+    auto r = cli->Get(("/api/v1/jobs?" + query).c_str());
+    ASSERT_TRUE(r) << query;
+    EXPECT_EQ(r->status, 400) << query << ": " << r->body;
+    EXPECT_EQ(body(r)["error"]["code"], "bad_parameter") << r->body;
+    EXPECT_TRUE(body(r)["error"]["parameter"].is_string()) << r->body;
+  }
+  auto page = cli->Get("/api/v1/jobs?limit=2");
+  ASSERT_TRUE(page);
+  ASSERT_EQ(page->status, 200);
+  const std::string cursor = body(page)["next_cursor"];
+  auto next = cli->Get(("/api/v1/jobs?cursor=" + cursor + "&limit=2").c_str());
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->status, 200);
+  EXPECT_EQ(body(next)["jobs"].size(), 1u) << next->body;
+}
+
 // One raw request on its own connection; the status of the reply (0: none).
 int rawStatus(int port, const std::string& request) {
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
