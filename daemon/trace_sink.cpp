@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "sim/gcode/error.h"
 #include "sim/kinematics/joint_path.h"
 
 namespace mdhd::cli {
@@ -62,7 +63,15 @@ void appendNumber(std::string& out, double v) {
 
 void TraceSink::motion(const gcode::Motion& m) {
   const geom::Tool* tool = job_.findTool(m.tool);
-  const kin::JointPath path(kin_, m, tool != nullptr ? tool->length : 0.0);
+  // A move the machine cannot make (a TCP pose through a singularity) is an error at
+  // its block, with line and column, as `mdhd check` reports it.
+  const kin::JointPath path = [&] {
+    try {
+      return kin::JointPath(kin_, m, tool != nullptr ? tool->length : 0.0);
+    } catch (const kin::KinematicsError& e) {
+      throw gcode::GcodeError(m.pos, std::string("cannot make this move: ") + e.what());
+    }
+  }();
   const kin::JointValues& q = path.endJoints();
 
   std::string line;

@@ -128,6 +128,18 @@ TEST_F(ScratchJob, AxisTheMachineLacksIsRejected) {
   EXPECT_NE(r.err.find("line 2, column 4"), std::string::npos) << r.err;
 }
 
+// A machine whose Y moves along x cannot put a TCP tip at y = 1: the move is an
+// error at its block's line and column, as in `mdhd check` (it was "machine: line 4").
+TEST_F(ScratchJob, AMoveTheMachineCannotMakeNamesLineAndColumn) {
+  json machine = json::parse(std::ifstream(dir_ / "machine.json"));
+  machine["joints"][1]["axis"] = {1, 0, 0};
+  std::ofstream(dir_ / "machine.json") << machine.dump();
+  const TraceRun r = trace(job(R"("program": "G21 G90\nT1 M6\nG43.4 H1\n  G1 X1 Y1 F100\nM2\n")"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("program, line 4, column 3: cannot make this move"), std::string::npos)
+      << r.err;
+}
+
 TEST_F(ScratchJob, ProgramFileAndExternalSubroutine) {
   write("part.ngc", "G0 X0 Y0 Z10\no<hole> call [5]\nM2\n");
   write("hole.ngc", "o<hole> sub\nG1 Z-#1 F100\no<hole> endsub\nM2\n");
