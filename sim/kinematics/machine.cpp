@@ -2,11 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 
 namespace mdhd::kin {
 namespace {
+
+// A limit as the user wrote it ("-120", "30.5"), not std::to_string's "-120.000000".
+std::string shortText(double v) {
+  std::ostringstream out;
+  out.precision(12);
+  out << v;
+  return out.str();
+}
 
 bool finite(const glm::dvec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -36,8 +45,8 @@ void checkJoint(const Joint& joint, const std::string& field, std::vector<Machin
     if (!std::isfinite(l.min) || !std::isfinite(l.max)) {
       issues.push_back({field + ".limits", "must be finite"});
     } else if (l.min > l.max) {
-      issues.push_back({field + ".limits",
-                        "min " + std::to_string(l.min) + " is above max " + std::to_string(l.max)});
+      issues.push_back(
+          {field + ".limits", "min " + shortText(l.min) + " is above max " + shortText(l.max)});
     }
   }
 }

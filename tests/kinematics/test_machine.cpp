@@ -54,7 +54,7 @@ TEST(Machine, JointProblems) {
   EXPECT_EQ(issues(m),
             "joints[0].axis: must be a finite, non-zero direction\n"
             "joints[1].name: \"Q\" is not an axis letter (X Y Z A B C U V W)\n"
-            "joints[2].limits: min 10.000000 is above max -10.000000\n"
+            "joints[2].limits: min 10 is above max -10\n"
             "joints[3].type: joint A must be rotary (A B C are rotary axes)\n"
             "joints[4].origin: must be finite\n");
 }

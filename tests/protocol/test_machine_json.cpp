@@ -183,7 +183,7 @@ TEST(MachineJson, ValuesThatValidationRejects) {
   EXPECT_EQ(errorOf([](json& j) {
               j["joints"][3]["limits"] = {30, -120};
             }),
-            "machine.joints[3].limits: min 30.000000 is above max -120.000000");
+            "machine.joints[3].limits: min 30 is above max -120");
   EXPECT_EQ(errorOf([](json& j) {
               j["joints"][0]["axis"] = {0, 0, 0};
             }),
