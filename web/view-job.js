@@ -118,7 +118,11 @@ export function renderJob(main, route, signal) {
       for (const tr of collisionsSlot.querySelectorAll("tr[data-index]")) {
         tr.setAttribute("aria-selected", String(Number(tr.dataset.index) === i));
       }
-      if (program && r.line) program.highlight(r.line);
+      if (program && r.line) {
+        program.highlight(r.line);
+        // On a tablet the listing is below the table: bring it up (a desk shows both already).
+        program.el.scrollIntoView({ block: "nearest", behavior: "smooth" });
+      }
       if (viewer) {
         viewer.highlight(i);
         viewer.centerOn(r.point);

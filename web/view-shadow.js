@@ -4,6 +4,7 @@ import { h, fill, facts } from "./dom.js";
 import { apiJson, apiFetch, apiBytes, enc } from "./api.js";
 import { hashFor } from "./router.js";
 import { eventJson } from "./sse.js";
+import { describeError } from "./api-errors.js";
 import { followEvents } from "./sse-stream.js";
 import { collisionLabel, formatNumber, formatPosition, formatMm, lineSpan } from "./format.js";
 import { errorBox, notice, statusBadge, busy, pause, isAbort } from "./ui.js";
@@ -144,7 +145,7 @@ export function renderShadow(main, route, signal) {
       viewer.setMesh(parseStl(bytes));
       viewer.say(`Live stock at ${new Date().toLocaleTimeString()}`);
     } catch (err) {
-      if (!isAbort(err, signal)) viewer.say(`The live stock could not be shown: ${err?.message ?? "unknown error"}`);
+      if (!isAbort(err, signal)) viewer.say(`The live stock could not be shown: ${describeError(err)}`);
     } finally {
       meshBusy = false;
     }
@@ -189,8 +190,17 @@ export function renderShadow(main, route, signal) {
       try {
         const doc = await apiJson(`/api/v1/shadows/${enc(id)}`, { signal });
         drawHealth(doc);
-        if (doc.state !== s.state) drawState(doc.state);
+        if (doc.state !== s.state) drawState(doc.state, doc.state === "stale" ? doc.polls?.last_error ?? "" : "");
         s.dropped = doc.alarms_dropped ?? 0;
+        // Alarms raised between the first GET and the stream's start come in here.
+        let added = false;
+        for (const a of doc.alarms ?? []) {
+          if (a.id !== undefined && !s.alarms.has(a.id)) {
+            s.alarms.set(a.id, a);
+            added = true;
+          }
+        }
+        if (added) drawAlarms();
         if (doc.state === "stopped") {
           apply(doc);
           await loadMesh();

@@ -205,6 +205,24 @@ try {
     noProblems(page);
   });
 
+  await step("A long job: progress shown while it runs, cancelled from its page", async () => {
+    const job = JSON.parse(readFileSync(path.join(examples, "contour-3axis.json"), "utf8"));
+    job.machine = JSON.parse(readFileSync(path.join(examples, job.machine_file), "utf8"));
+    job.program = readFileSync(path.join(examples, job.program_file), "utf8");
+    delete job.machine_file;
+    delete job.program_file;
+    job.options = { ...job.options, density: 80 };
+    const reply = await page.request.post(`${service.base}/api/v1/jobs`, { data: job });
+    equal(reply.status(), 202, "long job accepted");
+    const id = (await reply.json()).id;
+    await page.goto(`${service.base}/#/jobs/${id}`);
+    await page.waitForSelector('.verdict.busy progress');
+    await page.click('button:text("Cancel job")');
+    await page.waitForSelector('.verdict[data-verdict="cancelled"]', { timeout: 10000 });
+    assert(!(await page.isVisible('button:text("Cancel job")')), "no Cancel once cancelled");
+    noProblems(page);
+  });
+
   await step("A program that does not interpret: 422 shown with its line and column highlighted", async () => {
     await page.goto(`${service.base}/#/new`);
     await page.check("#mode-registered");
