@@ -223,6 +223,41 @@ try {
     noProblems(page);
   });
 
+  await step("A job that fails while it runs: error banner with the line, that line highlighted", async () => {
+    const reply = await page.request.post(`${service.base}/api/v1/jobs`, { data: {
+      machine: "3axis-mill",
+      tools: [{ number: 1, shape: "flat", diameter: 0.1, flute_length: 20, length: 50 }],
+      stock: { box: { min: [0, 0, -20], max: [50, 50, 0] } },
+      program: "G21 G90\nT1 M6\nG43 H1\nM3 S1000\nG0 X10 Y10 Z5\nG1 Z-1 F100\nM30\n",
+      options: { density: 5 } } });
+    equal(reply.status(), 202, "accepted");
+    await page.goto(`${service.base}/#/jobs/${(await reply.json()).id}`);
+    await page.waitForSelector('.verdict[data-verdict="error"]', { timeout: 15000 });
+    const detail = await page.textContent(".verdict-detail");
+    assert(/^Line 5, column 1: tool 1's cutter/.test(detail), `error detail: ${detail}`);
+    await page.waitForSelector('.program .pl.hl[data-line="5"] mark.column');
+    assert(/failed job has no mesh/.test(await page.textContent(".viewer-slot")), "no mesh said");
+    noProblems(page);
+  });
+
+  await step("Jobs list pages with next_cursor: 20 first, older ones on request", async () => {
+    const tiny = { machine: "3axis-mill", tools: [{ number: 1, shape: "flat", diameter: 6, flute_length: 20, length: 50 }],
+      stock: { box: { min: [0, 0, -5], max: [10, 10, 0] } }, program: "M30\n", options: { density: 2 } };
+    for (let i = 0; i < 18; i++) equal((await page.request.post(`${service.base}/api/v1/jobs`, { data: tiny })).status(), 202, "tiny job");
+    const all = (await (await page.request.get(`${service.base}/api/v1/jobs?limit=100`)).json()).jobs.map((j) => j.id);
+    assert(all.length > 20, `more than a page of jobs (${all.length})`);
+    await page.goto(`${service.base}/#/jobs`);
+    await page.waitForSelector("table.jobs tbody tr[data-id]");
+    equal(await page.locator("table.jobs tbody tr[data-id]").count(), 20, "first page");
+    equal(await page.getAttribute("table.jobs tbody tr[data-id] >> nth=0", "data-id"), all[0], "newest first");
+    await page.click('button:text("Show older jobs")');
+    await page.waitForFunction((n) => document.querySelectorAll("table.jobs tbody tr[data-id]").length === n, all.length);
+    const shown = await page.$$eval("table.jobs tbody tr[data-id]", (trs) => trs.map((t) => t.dataset.id));
+    equal(shown, all, "every job once, in order");
+    assert(await page.isHidden('button:text("Show older jobs")'), "no more pages");
+    noProblems(page);
+  });
+
   await step("A program that does not interpret: 422 shown with its line and column highlighted", async () => {
     await page.goto(`${service.base}/#/new`);
     await page.check("#mode-registered");
