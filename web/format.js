@@ -201,3 +201,26 @@ export function reportFacts(report) {
 function count(v) {
   return typeof v === "number" && Number.isFinite(v) ? formatNumber(v, 0) : "–";
 }
+
+// JSON for people to edit: two-space indents, but lists of numbers and small
+// flat objects on one line ({"address": 0, "type": "float32"}, [0, 0, -40]).
+export function prettyJson(value, indent = "") {
+  const scalar = (v) => v === null || typeof v !== "object";
+  const flat = (v) => scalar(v) || (Array.isArray(v) && v.every(scalar));
+  if (Array.isArray(value)) {
+    if (value.every(scalar)) return `[${value.map((x) => JSON.stringify(x) ?? "null").join(", ")}]`;
+    const inner = indent + "  ";
+    return `[\n${value.map((x) => inner + prettyJson(x, inner)).join(",\n")}\n${indent}]`;
+  }
+  if (value && typeof value === "object") {
+    const entries = Object.entries(value).filter(([, v]) => v !== undefined && typeof v !== "function");
+    if (entries.length === 0) return "{}";
+    if (entries.every(([, v]) => flat(v))) {
+      const line = `{${entries.map(([k, v]) => `${JSON.stringify(k)}: ${prettyJson(v)}`).join(", ")}}`;
+      if (indent.length + line.length <= 88) return line;
+    }
+    const inner = indent + "  ";
+    return `{\n${entries.map(([k, v]) => `${inner}${JSON.stringify(k)}: ${prettyJson(v, inner)}`).join(",\n")}\n${indent}}`;
+  }
+  return JSON.stringify(value) ?? "null";
+}

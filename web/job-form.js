@@ -5,6 +5,7 @@
 // program file or pasted text.
 
 import { InputError, parseUserJson } from "./api-errors.js";
+import { prettyJson } from "./format.js";
 
 const PROGRAM_EXTENSIONS = /\.(ngc|nc|tap|gcode|gc|cnc|txt|iso|mpf|eia)$/i;
 
@@ -107,7 +108,7 @@ export function formFromJob(job) {
   delete extra.tolerance;
   if (Object.keys(extra).length) shown.options = extra;
   return {
-    jobText: JSON.stringify(shown, null, 2),
+    jobText: prettyJson(shown),
     machine,
     program,
     density: options.density ?? "",

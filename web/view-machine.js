@@ -5,6 +5,7 @@ import { apiJson, apiFetch, enc } from "./api.js";
 import { hashFor } from "./router.js";
 import { parseUserJson, InputError } from "./api-errors.js";
 import { selectLine } from "./text-select.js";
+import { prettyJson } from "./format.js";
 import { errorBox, notice, pageHead, busy, isAbort } from "./ui.js";
 
 const NAME_RULE = /^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$/;
@@ -52,7 +53,7 @@ export function renderMachine(main, route, signal) {
 
   const load = async (name) => {
     const machine = await apiJson(`/api/v1/machines/${enc(name)}`, { signal });
-    editor.value = JSON.stringify(machine, null, 2);
+    editor.value = prettyJson(machine);
   };
   (async () => {
     try {
@@ -60,7 +61,7 @@ export function renderMachine(main, route, signal) {
       else if (from) {
         await load(from);
         nameInput.value = `${from}-copy`;
-      } else editor.value = JSON.stringify(TEMPLATE, null, 2);
+      } else editor.value = prettyJson(TEMPLATE);
     } catch (err) {
       if (isAbort(err, signal)) return;
       errors.replaceChildren(errorBox(err, err?.status === 404 ? "No such machine" : "Could not load the machine"));
@@ -80,7 +81,7 @@ export function renderMachine(main, route, signal) {
   format.addEventListener("click", () => {
     errors.replaceChildren();
     try {
-      editor.value = JSON.stringify(parsed(), null, 2);
+      editor.value = prettyJson(parsed());
     } catch (err) {
       errors.replaceChildren(errorBox(err, "Cannot tidy it"));
     }

@@ -9,6 +9,7 @@ import { InputError } from "./api-errors.js";
 import { errorBox, notice, pageHead, busy } from "./ui.js";
 import { ProgramView } from "./program-view.js";
 import { selectLine } from "./text-select.js";
+import { prettyJson } from "./format.js";
 
 // The form's contents outlive a visit to another page (a machinist checks the
 // jobs list and comes back to fix the program).
@@ -135,7 +136,7 @@ export function renderNewCheck(main, route, signal) {
         machineSelect.value = kept.machineName = f.machine;
       } else if (f.machine) {
         setMode("json");
-        machineText.value = kept.machineText = JSON.stringify(f.machine, null, 2);
+        machineText.value = kept.machineText = prettyJson(f.machine);
       }
       if (f.program !== null) programText.value = kept.programText = f.program;
       const needs = Object.values(f.needs).filter((n) => !(n in found));
@@ -146,7 +147,7 @@ export function renderNewCheck(main, route, signal) {
     for (const [name, c] of Object.entries(found)) {
       if (c.kind === "machine") {
         setMode("json");
-        machineText.value = kept.machineText = JSON.stringify(c.value, null, 2);
+        machineText.value = kept.machineText = prettyJson(c.value);
         items.push(h("li", {}, `Machine: ${name}`));
       } else if (c.kind === "program") {
         programText.value = kept.programText = c.value;

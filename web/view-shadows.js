@@ -5,7 +5,7 @@ import { hashFor } from "./router.js";
 import { parseUserJson } from "./api-errors.js";
 import { errorBox, notice, pageHead, statusBadge, busy, pause, isAbort } from "./ui.js";
 import { selectLine } from "./text-select.js";
-import { formatNumber } from "./format.js";
+import { formatNumber, prettyJson } from "./format.js";
 
 const TEMPLATE = {
   machine: "3axis-mill",
@@ -29,7 +29,7 @@ export function renderShadows(main, route, signal) {
   const errors = h("div", { class: "errors", "aria-live": "polite" });
   const body = h("tbody", {}, h("tr", {}, h("td", { colspan: "4" }, "Loading…")));
   const editor = h("textarea", { id: "shadow-json", rows: 22, spellcheck: "false", class: "code-input", "aria-describedby": "shadow-json-hint" });
-  editor.value = keptText ?? JSON.stringify(TEMPLATE, null, 2);
+  editor.value = keptText ?? prettyJson(TEMPLATE);
   editor.addEventListener("input", () => { keptText = editor.value; });
   const jobFile = h("input", { type: "file", id: "shadow-job-file", accept: ".json" });
   const programFile = h("input", { type: "file", id: "shadow-program-file", accept: ".ngc,.nc,.tap,.gcode,.txt,.cnc" });
@@ -71,7 +71,7 @@ export function renderShadows(main, route, signal) {
       }
       if (job.modbus) doc.modbus = job.modbus;
       const missing = ["machine_file", "program_file"].filter((k) => k in job).map((k) => job[k]);
-      editor.value = keptText = JSON.stringify(doc, null, 2);
+      editor.value = keptText = prettyJson(doc);
       if (missing.length) formErrors.replaceChildren(notice("info", `The job names ${missing.join(" and ")}: the service takes only inline machines and programs. Set "machine" to a registered machine's name, and add the program with the button.`));
     } catch (err) {
       formErrors.replaceChildren(errorBox(err, "Could not use the file"));
@@ -82,7 +82,7 @@ export function renderShadows(main, route, signal) {
     try {
       const doc = current();
       doc.program = await programFile.files[0].text();
-      editor.value = keptText = JSON.stringify(doc, null, 2);
+      editor.value = keptText = prettyJson(doc);
     } catch (err) {
       formErrors.replaceChildren(errorBox(err, "Could not add the program"));
     }

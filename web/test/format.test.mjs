@@ -110,3 +110,22 @@ test("report facts: stats, mdh, overhang, timing", () => {
   assert.equal(get(empty.stats, "Blocks"), "–");
   assert.deepEqual(empty.timing, []);
 });
+
+test("prettyJson: readable, and the same value back", () => {
+  const value = {
+    machine: "3axis-mill",
+    tools: [{ number: 1, shape: "flat", holder: [{ diameter: 30, length: 30 }] }],
+    stock: { box: { min: [0, 0, -40], max: [100, 80, 0] } },
+    empty: {}, list: [], nested: [[1, 2], [3]], text: "a \"quoted\"\nline", skip: undefined,
+  };
+  const text = f.prettyJson(value);
+  assert.deepEqual(JSON.parse(text), JSON.parse(JSON.stringify(value)));
+  assert.match(text, /^ {6}"holder": \[\n {8}\{"diameter": 30, "length": 30\}\n {6}\]/m);
+  assert.match(text, /"box": \{"min": \[0, 0, -40\], "max": \[100, 80, 0\]\}/);
+  assert.match(text, /"empty": \{\},\n {2}"list": \[\]/);
+  assert.ok(!text.includes("skip"));
+  const long = { a: "x".repeat(100), b: 1 };
+  assert.equal(f.prettyJson(long), `{\n  "a": "${"x".repeat(100)}",\n  "b": 1\n}`);
+  assert.equal(f.prettyJson(null), "null");
+  assert.equal(f.prettyJson([1, null, "a"]), "[1, null, \"a\"]");
+});
