@@ -124,6 +124,17 @@ HttpService::HttpService(HttpSettings settings, JsonLog& log, Metrics& metrics)
     return screen(req, res) ? httplib::Server::HandlerResponse::Handled
                             : httplib::Server::HandlerResponse::Unhandled;
   });
+  // `Expect: 100-continue`: the library would invite the body ("100 Continue") before
+  // the screen runs, so a client asked first and was sent the 413 only after
+  // uploading. The screen answers instead; a request it passes is screened again
+  // (harmlessly) on routing.
+  server_->set_expect_100_continue_handler(
+      [this](const httplib::Request& req, httplib::Response& res) {
+        if (!screen(req, res)) return 100;
+        // The library writes this reply without a length of its own.
+        res.set_header("Content-Length", std::to_string(res.body.size()));
+        return res.status;
+      });
   server_->set_error_handler(httplib::Server::HandlerWithResponse(
       [this](const httplib::Request& req, httplib::Response& res) {
         // Called for every reply >= 400; route handlers have filled theirs already.
@@ -235,7 +246,8 @@ bool HttpService::screen(const httplib::Request& req, httplib::Response& res) {
   // Content-Length near 2^64. Routes that serve ranges read the header themselves
   // (requestedByteRange); the rest ignore it (RFC 9110 14.2 allows it) and say so.
   const_cast<httplib::Request&>(req).ranges.clear();
-  if (req.method == "HEAD") res.set_header("Accept-Ranges", "none");
+  if (req.method == "HEAD" && !res.has_header("Accept-Ranges"))
+    res.set_header("Accept-Ranges", "none");
   const Registered* match = nullptr;
   std::string allowed;
   for (const Registered& r : routes_) {

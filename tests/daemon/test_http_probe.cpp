@@ -149,8 +149,9 @@ TEST_F(HttpProbe, TheJobListRefusesQueryParametersItDoesNotHave) {
   EXPECT_EQ(body(next)["jobs"].size(), 1u) << next->body;
 }
 
-// One raw request on its own connection; the status of the reply (0: none).
-int rawStatus(int port, const std::string& request) {
+// One raw request on its own connection; what came back before the first reply's
+// status line ended or 5 s passed.
+std::string rawFirstLine(int port, const std::string& request) {
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
@@ -175,7 +176,45 @@ int rawStatus(int port, const std::string& request) {
     reply.append(buf, static_cast<std::size_t>(n));
   }
   close(fd);
-  return reply.size() > 12 ? std::atoi(reply.c_str() + 9) : 0;
+  return reply.substr(0, reply.find("\r\n"));
+}
+
+// The status of the reply to a raw request (0: none).
+int rawStatus(int port, const std::string& request) {
+  const std::string line = rawFirstLine(port, request);
+  return line.size() > 12 ? std::atoi(line.c_str() + 9) : 0;
+}
+
+TEST_F(HttpProbe, ExpectContinueIsAnsweredByTheScreenNotInvitedFirst) {
+  service::ServiceConfig c = config();
+  c.max_body_bytes = 4096;
+  c.tokens = {"0123456789abcdef-probe-token"};
+  RunningService svc(c);
+  // curl sends `Expect: 100-continue` before any body over 1 MB and waits: the
+  // library said "100 Continue" before the screen ran, so the client uploaded the
+  // whole body to learn it was too large, unauthorised or sent to no route.
+  const std::string auth = "Authorization: Bearer 0123456789abcdef-probe-token\r\n";
+  const std::string expect = "Content-Type: application/json\r\nExpect: 100-continue\r\n";
+  EXPECT_EQ(rawFirstLine(svc->port(), "POST /api/v1/jobs HTTP/1.1\r\nHost: x\r\n" + auth + expect +
+                                          "Content-Length: 50000000\r\n\r\n"),
+            "HTTP/1.1 413 Payload Too Large");
+  EXPECT_EQ(rawFirstLine(svc->port(), "POST /api/v1/jobs HTTP/1.1\r\nHost: x\r\n" + expect +
+                                          "Content-Length: 100\r\n\r\n"),
+            "HTTP/1.1 401 Unauthorized");
+  EXPECT_EQ(rawFirstLine(svc->port(), "POST /api/v1/nothing HTTP/1.1\r\nHost: x\r\n" + auth +
+                                          expect + "Content-Length: 100\r\n\r\n"),
+            "HTTP/1.1 404 Not Found");
+  // A request the screen passes is still invited.
+  EXPECT_EQ(rawFirstLine(svc->port(), "POST /api/v1/jobs HTTP/1.1\r\nHost: x\r\n" + auth + expect +
+                                          "Content-Length: 100\r\n\r\n"),
+            "HTTP/1.1 100 Continue");
+  // And the refusal is a whole JSON error a library client can read.
+  auto cli = svc.client("0123456789abcdef-probe-token");
+  auto r = cli->Post("/api/v1/jobs", {{"Expect", "100-continue"}}, std::string(5000, ' '),
+                     "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 413);
+  EXPECT_EQ(body(r)["error"]["code"], "body_too_large") << r->body;
 }
 
 TEST_F(HttpProbe, RequestMetricsKeepOneMethodLabelForUnknownMethods) {
