@@ -160,6 +160,11 @@ export function renderJob(main, route, signal) {
     try {
       const doc = await apiJson(`/api/v1/jobs/${enc(id)}/job`, { signal });
       program = new ProgramView(doc?.program ?? "", { label: "Program" });
+      // A line with a collision selects it, as its row does.
+      program.onLineClick = (n) => {
+        const i = rows.findIndex((r) => r.line === n);
+        if (i >= 0) select(i);
+      };
       fill(programSlot, program.el);
       const err = report?.error;
       if (Number.isInteger(err?.line) && err.line > 0) program.highlight(err.line, err.column ?? 0);

@@ -47,7 +47,7 @@ export function renderShadow(main, route, signal) {
           h("div", { class: "row" }, h("label", { class: "check", for: "auto-mesh" }, autoMesh, " Refresh while live"), refreshMesh),
           viewer.el))));
 
-  const s = { state: null, alarms: new Map(), dropped: 0 };
+  const s = { state: null, alarms: new Map(), dropped: 0, markerIds: [], selected: null };
 
   const drawState = (state, reason) => {
     s.state = state;
@@ -81,7 +81,14 @@ export function renderShadow(main, route, signal) {
     const list = [...s.alarms.values()].sort((a, b) => (a.id ?? 0) - (b.id ?? 0));
     // Newest first: the alarm that matters at the machine is the latest.
     fill(alarmsBody, list.length
-      ? [...list].reverse().map((a) => h("tr", { class: a.kind === "predicted" ? "predicted" : "collision", dataset: { id: String(a.id), type: a.type } },
+      ? [...list].reverse().map((a) => h("tr", {
+          class: a.kind === "predicted" ? "predicted" : "collision clickable",
+          tabindex: a.kind === "predicted" ? null : "0",
+          "aria-selected": a.kind === "predicted" ? null : String(a.id === s.selected),
+          dataset: { id: String(a.id), type: a.type },
+          onclick: () => showAlarm(a),
+          onkeydown: (e) => { if (e.key === "Enter" || e.key === " ") { e.preventDefault(); showAlarm(a); } },
+        },
           h("td", { class: "num" }, String(a.id ?? "")),
           h("td", {}, a.kind === "predicted" ? `predicted${typeof a.time_to_contact_s === "number" ? ` in ${formatNumber(a.time_to_contact_s, 1)} s` : ""}` : "collision"),
           h("td", {}, h("span", { class: `ctype ${a.type}` }, collisionLabel(a.type))),
@@ -90,7 +97,18 @@ export function renderShadow(main, route, signal) {
           h("td", { class: "num" }, `${formatMm(a.depth)}${a.depth_measured === false ? " (so far)" : ""}`)))
       : h("tr", {}, h("td", { colspan: "6" }, "No alarms.")));
     alarmsNote.textContent = s.dropped ? `${s.dropped} alarms in the middle were dropped from the list (the first and last 100 are kept).` : "";
+    s.markerIds = list.filter((a) => a.kind !== "predicted").map((a) => a.id);
     viewer.setMarkers(list.filter((a) => a.kind !== "predicted").map((a) => (Array.isArray(a.position) ? a.position : null)));
+    viewer.highlight(s.markerIds.indexOf(s.selected));
+  };
+
+  // A collision alarm's row shows its point in the live stock.
+  const showAlarm = (a) => {
+    if (a.kind === "predicted") return;
+    s.selected = a.id;
+    for (const tr of alarmsBody.querySelectorAll("tr[data-id]")) tr.setAttribute("aria-selected", String(tr.dataset.id === String(a.id)));
+    viewer.highlight(s.markerIds.indexOf(a.id));
+    if (Array.isArray(a.position)) viewer.centerOn(a.position);
   };
 
   const drawHealth = (doc) => {

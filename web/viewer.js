@@ -1,4 +1,5 @@
-// The 3D viewer: a canvas with the mesh, markers at report positions, orbit
+// The 3D viewer: a canvas with the mesh, markers at report positions, an axis
+// triad (X red, Y green, Z blue) at the part's lower corner, orbit
 // (drag), pan (right drag, shift drag or two fingers), zoom (wheel or pinch),
 // fit (double click, F or the button) and the keyboard (arrows, +/-).
 // The canvas carries data-state ("empty", "drawn", "error") and, once a mesh is
@@ -65,6 +66,7 @@ export class MeshViewer {
     this.triangles = mesh.triangles;
     const first = !this.bounds;
     this.bounds = { min: mesh.min, max: mesh.max };
+    this.uploadLines();
     if (first) this.fit();
     else this.redraw();
     this.say("");
@@ -80,8 +82,26 @@ export class MeshViewer {
   setExtras(marks, lines = []) {
     this.extraMarkers = marks;
     this.lines = lines;
-    if (this.scene) this.scene.setLines(lines);
+    this.uploadLines();
     this.uploadMarkers();
+  }
+
+  // The caller's lines and an axis triad at the part's lower corner (X red, Y green,
+  // Z blue, a fifth of the part's size), so the machine's directions are never in doubt.
+  uploadLines() {
+    if (!this.scene) return;
+    const all = [...this.lines];
+    if (this.bounds) {
+      const { min, max } = this.bounds;
+      const size = Math.max(max[0] - min[0], max[1] - min[1], max[2] - min[2], 1) * 0.2;
+      const colors = [[0.95, 0.3, 0.3], [0.3, 0.85, 0.35], [0.35, 0.55, 1.0]];
+      for (let a = 0; a < 3; a++) {
+        const end = [...min];
+        end[a] += size;
+        all.push({ point: [...min], color: colors[a] }, { point: end, color: colors[a] });
+      }
+    }
+    this.scene.setLines(all);
   }
 
   highlight(index) {

@@ -194,6 +194,10 @@ try {
     equal(await page.getAttribute("canvas.viewer-canvas", "data-highlight"), "0", "marker 0 highlighted");
     await shot(page, "job");
     assert(await page.locator(".program .pl.hl").isVisible(), "the highlighted line is scrolled into view");
+    // A program line with a collision selects it, as its row does.
+    await page.click('.program .pl[data-line="12"]');
+    equal(await page.getAttribute('.collisions-table tr[data-type="shank_contact"]', "aria-selected"), "true", "line 12 selects the shank row");
+    equal(await page.getAttribute("canvas.viewer-canvas", "data-highlight"), "2", "marker 2 highlighted");
     noProblems(page);
   });
 
@@ -405,6 +409,8 @@ try {
       await page.waitForSelector("table.alarms tr.collision[data-type]", { timeout: 20000 });
       const types = await page.$$eval("table.alarms tr.collision[data-type]", (trs) => trs.map((t) => t.dataset.type));
       assert(types.every((t) => ["rapid_into_stock", "holder_contact", "shank_contact"].includes(t)), `alarm types ${types}`);
+      await page.click("table.alarms tr.collision[data-type] >> nth=0");
+      assert(Number(await page.getAttribute("canvas.viewer-canvas", "data-highlight")) >= 0, "the alarm's marker highlighted");
       mark("alarm");
       await page.waitForSelector('canvas.viewer-canvas[data-state="drawn"]', { timeout: 10000 });
       assert(Number(await page.getAttribute("canvas.viewer-canvas", "data-triangles")) > 0, "live mesh drawn");
