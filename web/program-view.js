@@ -16,7 +16,7 @@ export class ProgramView {
     this.spacer.style.height = `${this.lines.length * LINE_PX}px`;
     this.el = h("div", { class: "program", role: "region", tabindex: "0", "aria-label": `${label}, ${this.lines.length} lines` }, this.spacer);
     // A short program gets a box its size, not a screenful of blank lines.
-    if (this.lines.length <= 16) this.el.style.height = `${this.lines.length * LINE_PX + 4}px`;
+    this.el.style.maxHeight = `${this.lines.length * LINE_PX + 20}px`;  // + a scroll bar
     this.digits = String(this.lines.length).length;
     this.el.style.setProperty("--digits", String(this.digits));
     this.el.addEventListener("scroll", () => this.schedule());
