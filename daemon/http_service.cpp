@@ -11,6 +11,7 @@
 
 #include "daemon/guarded_server.h"
 #include "daemon/http_errors.h"
+#include "daemon/openapi_parts.h"
 
 namespace mdhd::service {
 namespace {
@@ -380,8 +381,22 @@ nlohmann::json HttpService::openApi() const {
   nlohmann::json paths = nlohmann::json::object();
   for (const Registered& r : routes_) {
     nlohmann::json op = r.route.operation;
-    if (r.route.auth && auth_.enabled())
+    // What the front answers for any route before its handler runs, unless the
+    // operation says it already: the bearer check, and a body's size and type.
+    nlohmann::json& responses = op["responses"];
+    auto common = [&responses](const char* status, const char* what) {
+      if (!responses.contains(status)) responses[status] = errorResponse(what);
+    };
+    if (r.route.auth && auth_.enabled()) {
       op["security"] = nlohmann::json::array({{{"bearer", nlohmann::json::array()}}});
+      common("401", "No bearer token (WWW-Authenticate: Bearer).");
+      common("403", "Token not accepted.");
+    }
+    if (r.route.method == "POST" || r.route.method == "PUT" || r.route.method == "PATCH") {
+      common("400", "Bad JSON or a bad field, or bad framing.");
+      common("413", "Body over the limit (max_body_bytes).");
+      common("415", "Not application/json, or a compressed body.");
+    }
     // Path parameters from the template, unless the operation declares them.
     if (!op.contains("parameters")) {
       nlohmann::json params = nlohmann::json::array();

@@ -9,8 +9,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "job_helpers.h"
 #include "service_fixture.h"
@@ -147,6 +149,55 @@ TEST_F(HttpProbe, TheJobListRefusesQueryParametersItDoesNotHave) {
   ASSERT_TRUE(next);
   EXPECT_EQ(next->status, 200);
   EXPECT_EQ(body(next)["jobs"].size(), 1u) << next->body;
+}
+
+TEST_F(HttpProbe, OpenApiListsTheStatusesTheRoutesAnswer) {
+  service::ServiceConfig c = config();
+  const std::string token = "0123456789abcdef-probe-token";
+  c.tokens = {token};
+  c.max_body_bytes = 4096;
+  RunningService svc(c);
+  auto open = svc.client();
+  auto doc = open->Get("/openapi.json");
+  ASSERT_TRUE(doc);
+  const nlohmann::json api = body(doc);
+  auto documented = [&api](const std::string& path, std::string method, int status) {
+    for (char& ch : method) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return api["paths"][path][method]["responses"].contains(std::to_string(status));
+  };
+  auto authed = svc.client(token);
+  const std::string machine = threeAxisMachine().dump();
+  struct Probe {
+    const char* method;
+    std::string url;
+    std::string path;  // the template
+    std::string body;
+    const char* type;
+    bool withToken;
+  };
+  const std::vector<Probe> probes = {
+      {"PUT", "/api/v1/machines/m1", "/api/v1/machines/{name}", machine, "text/plain", true},
+      {"PUT", "/api/v1/machines/m1", "/api/v1/machines/{name}", std::string(5000, ' '),
+       "application/json", true},
+      {"PUT", "/api/v1/machines/m1", "/api/v1/machines/{name}", machine, "application/json", false},
+      {"GET", "/api/v1/machines/m1", "/api/v1/machines/{name}", "", "", false},
+      {"GET", "/api/v1/jobs/0123", "/api/v1/jobs/{id}", "", "", false},
+      {"DELETE", "/api/v1/machines/m1", "/api/v1/machines/{name}", "", "", false},
+      {"POST", "/api/v1/shadows", "/api/v1/shadows", "{}", "text/plain", true},
+      {"GET", "/api/v1/jobs", "/api/v1/jobs", "", "", false},
+  };
+  for (const Probe& p : probes) {
+    httplib::Client& cli = p.withToken ? *authed : *open;
+    httplib::Result r = std::string(p.method) == "PUT"    ? cli.Put(p.url.c_str(), p.body, p.type)
+                        : std::string(p.method) == "POST" ? cli.Post(p.url.c_str(), p.body, p.type)
+                        : std::string(p.method) == "DELETE" ? cli.Delete(p.url.c_str())
+                                                            : cli.Get(p.url.c_str());
+    ASSERT_TRUE(r) << p.method << " " << p.url;
+    EXPECT_GE(r->status, 400) << p.method << " " << p.url;
+    EXPECT_TRUE(documented(p.path, p.method, r->status))
+        << p.method << " " << p.path << " answered " << r->status << " (" << r->body
+        << ") which the OpenAPI document does not list";
+  }
 }
 
 // One raw request on its own connection; what came back before the first reply's
