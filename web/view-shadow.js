@@ -77,30 +77,54 @@ export function renderShadow(main, route, signal) {
     }
   };
 
+  // Rows are kept per alarm and rebuilt only when that alarm changed, so a row stays
+  // put under a finger while new alarms arrive; drawing waits for the next frame.
+  const rowCache = new Map();  // id -> {key, tr}
+  let alarmFrame = 0;
   const drawAlarms = () => {
+    if (!alarmFrame) alarmFrame = requestAnimationFrame(drawAlarmsNow);
+  };
+  const alarmRow = (a) => h("tr", {
+      class: a.kind === "predicted" ? "predicted" : "collision clickable",
+      tabindex: a.kind === "predicted" ? null : "0",
+      "aria-selected": a.kind === "predicted" ? null : String(a.id === s.selected),
+      dataset: { id: String(a.id), type: a.type },
+      onclick: () => showAlarm(a),
+      onkeydown: (e) => { if (e.key === "Enter" || e.key === " ") { e.preventDefault(); showAlarm(a); } },
+    },
+    h("td", { class: "num" }, String(a.id ?? "")),
+    h("td", {}, a.kind === "predicted" ? `predicted${typeof a.time_to_contact_s === "number" ? ` in ${formatNumber(a.time_to_contact_s, 1)} s` : ""}` : "collision"),
+    h("td", {}, h("span", { class: `ctype ${a.type}` }, collisionLabel(a.type))),
+    h("td", { class: "num" }, lineSpan(a)),
+    h("td", { class: "num" }, formatPosition(a.position)),
+    h("td", { class: "num" }, `${formatMm(a.depth)}${a.depth_measured === false ? " (so far)" : ""}`));
+  const drawAlarmsNow = () => {
+    alarmFrame = 0;
+    // Like the service, keep the first 100 and the latest 200 of a long session.
+    const ids = [...s.alarms.keys()].sort((a, b) => a - b);
+    if (ids.length > 300) for (const id of ids.slice(100, ids.length - 200)) s.alarms.delete(id);
     const list = [...s.alarms.values()].sort((a, b) => (a.id ?? 0) - (b.id ?? 0));
+    const rows = [];
+    const seen = new Set();
     // Newest first: the alarm that matters at the machine is the latest.
-    fill(alarmsBody, list.length
-      ? [...list].reverse().map((a) => h("tr", {
-          class: a.kind === "predicted" ? "predicted" : "collision clickable",
-          tabindex: a.kind === "predicted" ? null : "0",
-          "aria-selected": a.kind === "predicted" ? null : String(a.id === s.selected),
-          dataset: { id: String(a.id), type: a.type },
-          onclick: () => showAlarm(a),
-          onkeydown: (e) => { if (e.key === "Enter" || e.key === " ") { e.preventDefault(); showAlarm(a); } },
-        },
-          h("td", { class: "num" }, String(a.id ?? "")),
-          h("td", {}, a.kind === "predicted" ? `predicted${typeof a.time_to_contact_s === "number" ? ` in ${formatNumber(a.time_to_contact_s, 1)} s` : ""}` : "collision"),
-          h("td", {}, h("span", { class: `ctype ${a.type}` }, collisionLabel(a.type))),
-          h("td", { class: "num" }, lineSpan(a)),
-          h("td", { class: "num" }, formatPosition(a.position)),
-          h("td", { class: "num" }, `${formatMm(a.depth)}${a.depth_measured === false ? " (so far)" : ""}`)))
-      : h("tr", {}, h("td", { colspan: "6" }, "No alarms.")));
+    for (const a of [...list].reverse()) {
+      const key = JSON.stringify(a);
+      let cached = rowCache.get(a.id);
+      if (!cached || cached.key !== key) {
+        cached = { key, tr: alarmRow(a) };
+        rowCache.set(a.id, cached);
+      }
+      seen.add(a.id);
+      rows.push(cached.tr);
+    }
+    for (const id of [...rowCache.keys()]) if (!seen.has(id)) rowCache.delete(id);
+    alarmsBody.replaceChildren(...(rows.length ? rows : [h("tr", {}, h("td", { colspan: "6" }, "No alarms."))]));
     alarmsNote.textContent = s.dropped ? `${s.dropped} alarms in the middle were dropped from the list (the first and last 100 are kept).` : "";
     s.markerIds = list.filter((a) => a.kind !== "predicted").map((a) => a.id);
     viewer.setMarkers(list.filter((a) => a.kind !== "predicted").map((a) => (Array.isArray(a.position) ? a.position : null)));
     viewer.highlight(s.markerIds.indexOf(s.selected));
   };
+  signal.addEventListener("abort", () => cancelAnimationFrame(alarmFrame));
 
   // A collision alarm's row shows its point in the live stock.
   const showAlarm = (a) => {

@@ -227,7 +227,7 @@ try {
     noProblems(page);
   });
 
-  await step("A job that fails while it runs: error banner with the line, that line highlighted", async () => {
+  await step("A job that fails while it runs: error banner with the line, that line highlighted; deleted", async () => {
     const reply = await page.request.post(`${service.base}/api/v1/jobs`, { data: {
       machine: "3axis-mill",
       tools: [{ number: 1, shape: "flat", diameter: 0.1, flute_length: 20, length: 50 }],
@@ -241,6 +241,11 @@ try {
     assert(/^Line 5, column 1: tool 1's cutter/.test(detail), `error detail: ${detail}`);
     await page.waitForSelector('.program .pl.hl[data-line="5"] mark.column');
     assert(/failed job has no mesh/.test(await page.textContent(".viewer-slot")), "no mesh said");
+    // Delete it (the confirmation is accepted): back to the list, gone from the API.
+    const failedId = page.url().split("/").pop();
+    await page.click('.page-head button:text("Delete")');
+    await page.waitForURL(/#\/jobs$/);
+    equal((await page.request.get(`${service.base}/api/v1/jobs/${failedId}`)).status(), 404, "deleted job");
     noProblems(page);
   });
 
