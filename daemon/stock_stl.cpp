@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 #include "protocol/stl.h"
@@ -55,10 +56,71 @@ class GuardedSink final : public mesh::MeshSink {
   std::uint64_t count_ = 0;
 };
 
+class CountingSink final : public mesh::MeshSink {
+ public:
+  void triangle(const mesh::MeshVertex&, const mesh::MeshVertex&, const mesh::MeshVertex&,
+                bool) override {
+    ++count;
+  }
+  std::uint64_t count = 0;
+};
+
+const char* const kHeader = "mdhd check: final stock (mm, workpiece frame)";
+
+// A pipe, terminal or device (`--mesh /dev/stdout`, a FIFO): written straight
+// through, the triangle count first, so the mesh is made twice (once to count).
+StlOutcome writeThrough(const mdh::Stock& stock, const std::filesystem::path& path, int threads,
+                        const StlLimits& limits) {
+  mesh::MeshOptions options;
+  options.threads = threads;
+  std::ofstream file(path, std::ios::binary);
+  if (!file) return {StlOutcome::Failure::kWrite, "cannot write " + path.string()};
+  try {
+    CountingSink counter;
+    GuardedSink countSink(counter, file, limits);
+    mesh::meshStock(stock, countSink, options);
+    countSink.check();
+    if (counter.count > std::numeric_limits<std::uint32_t>::max())
+      throw std::runtime_error(std::to_string(counter.count) +
+                               " triangles do not fit the format's 32-bit count");
+    protocol::StlWriter stl(file, kHeader, static_cast<std::uint32_t>(counter.count));
+    GuardedSink sink(stl, file, limits);
+    mesh::meshStock(stock, sink, options);
+    sink.check();
+    stl.finish();
+    return {};
+  } catch (const MeshTooLarge& e) {
+    return {StlOutcome::Failure::kTooLarge, e.what()};
+  } catch (const check::Cancelled&) {
+    throw;
+  } catch (const std::exception& e) {
+    return {StlOutcome::Failure::kWrite, "cannot write " + path.string() + ": " + e.what()};
+  }
+}
+
 }  // namespace
 
-StlOutcome writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path, int threads,
+StlOutcome writeStockStl(const mdh::Stock& stock, const std::filesystem::path& asked, int threads,
                          const StlLimits& limits) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(asked, ec);  // of what a link names
+  if (fs::is_directory(status))
+    return {StlOutcome::Failure::kWrite, "cannot write " + asked.string() + ": it is a folder"};
+  // Only a regular file (or a new one) is replaced by renaming a finished temporary
+  // over it: renaming over /dev/stdout or a FIFO replaced the device or pipe by a file.
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    return writeThrough(stock, asked, threads, limits);
+  // A symbolic link is followed: the file it names is replaced, the link stays.
+  fs::path path = asked;
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(path, ec)); ++hops) {
+    const fs::path to = fs::read_symlink(path, ec);
+    if (ec || hops == 40) return writeThrough(stock, asked, threads, limits);
+    path = to.is_absolute() ? to : path.parent_path() / to;
+    // /dev/stdout on a file: /proc/self/fd/1 names the open file, not a path to
+    // replace (the shell's descriptor would keep the old, empty one).
+    if (path.string().starts_with("/proc/")) return writeThrough(stock, asked, threads, limits);
+  }
   std::filesystem::path partial = path;
   partial += ".partial";
   auto dropPartial = [&] {
@@ -69,7 +131,7 @@ StlOutcome writeStockStl(const mdh::Stock& stock, const std::filesystem::path& p
     {
       std::ofstream file(partial, std::ios::binary | std::ios::trunc);
       if (!file) return {StlOutcome::Failure::kWrite, "cannot write " + partial.string()};
-      protocol::StlWriter stl(file, "mdhd check: final stock (mm, workpiece frame)");
+      protocol::StlWriter stl(file, kHeader);
       GuardedSink sink(stl, file, limits);
       mesh::MeshOptions options;
       options.threads = threads;

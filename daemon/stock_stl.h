@@ -1,8 +1,11 @@
 #pragma once
 // The final stock as a binary STL file, written whole or not at all: into a
-// temporary beside the target, flushed to disk, then renamed over it. `mdhd check
-// --mesh` and the service write the same bytes for the same job, on any number of
-// meshing threads.
+// temporary beside the target, flushed to disk, then renamed over it (a symbolic
+// link's target: the link stays). A target that exists and is no regular file (a
+// pipe, a terminal, /dev/stdout, /dev/null) is written straight through instead,
+// the triangle count first (the mesh is made twice); renaming over it replaced it
+// by a file. `mdhd check --mesh` and the service write the same bytes for the same
+// job, on any number of meshing threads.
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
