@@ -7,6 +7,7 @@ import { errorBox, statusBadge, progressBar, pageHead, pause, isAbort } from "./
 
 const PAGE = 20;
 const REFRESH_MS = 1500;
+const IDLE_REFRESH_MS = 5000;
 
 export function renderJobs(main, route, signal) {
   document.title = "Jobs · mdhd";
@@ -41,10 +42,16 @@ export function renderJobs(main, route, signal) {
     more.hidden = !cursor;
   };
 
+  // A refresh still in flight when older jobs are asked for would undo them: each
+  // load has a number, and only the latest one's answer is drawn.
+  let generation = 0;
+  let loadingMore = false;
   const load = async (append) => {
+    const mine = ++generation;
     const q = new URLSearchParams({ limit: String(append ? PAGE : Math.min(100, Math.max(PAGE, jobs.length))) });
     if (append && cursor) q.set("cursor", cursor);
     const page = await apiJson(`/api/v1/jobs?${q}`, { signal });
+    if (mine !== generation) return;
     if (append) {
       const seen = new Set(jobs.map((j) => j.id));
       jobs = jobs.concat(page.jobs.filter((j) => !seen.has(j.id)));
@@ -57,6 +64,7 @@ export function renderJobs(main, route, signal) {
 
   more.addEventListener("click", async () => {
     more.disabled = true;
+    loadingMore = true;
     try {
       await load(true);
       errors.replaceChildren();
@@ -64,6 +72,7 @@ export function renderJobs(main, route, signal) {
       if (!isAbort(err, signal)) errors.replaceChildren(errorBox(err, "Could not load older jobs"));
     } finally {
       more.disabled = false;
+      loadingMore = false;
     }
   });
 
@@ -72,8 +81,10 @@ export function renderJobs(main, route, signal) {
     while (!signal.aborted) {
       try {
         // The first load pages from the start; refreshes keep as many rows as shown.
-        await load(first);
-        first = false;
+        if (!loadingMore) {
+          await load(first);
+          first = false;
+        }
         errors.replaceChildren();
       } catch (err) {
         if (isAbort(err, signal)) return;
@@ -81,7 +92,8 @@ export function renderJobs(main, route, signal) {
       }
       const active = jobs.some((j) => j.status === "queued" || j.status === "running");
       live.textContent = active ? "Refreshing while jobs run…" : "";
-      await pause(active || first ? REFRESH_MS : 10000, signal);
+      // Jobs come from other clients too (CAM, MES): look again now and then when idle.
+      await pause(active || first ? REFRESH_MS : IDLE_REFRESH_MS, signal);
     }
   })();
 }

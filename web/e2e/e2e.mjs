@@ -257,6 +257,7 @@ try {
     const all = (await (await page.request.get(`${service.base}/api/v1/jobs?limit=100`)).json()).jobs.map((j) => j.id);
     assert(all.length > 20, `more than a page of jobs (${all.length})`);
     await page.goto(`${service.base}/#/jobs`);
+    await page.reload();  // the delete above left the page on #/jobs already
     await page.waitForSelector("table.jobs tbody tr[data-id]");
     equal(await page.locator("table.jobs tbody tr[data-id]").count(), 20, "first page");
     equal(await page.getAttribute("table.jobs tbody tr[data-id] >> nth=0", "data-id"), all[0], "newest first");
