@@ -21,8 +21,10 @@ export class ProgramView {
     this.el.style.setProperty("--digits", String(this.digits));
     this.el.addEventListener("scroll", () => this.schedule());
     this.frame = 0;
-    // Render once attached and sized.
-    this.resize = new ResizeObserver(() => this.render());
+    // Render once attached and sized: in the next frame, because rendering here would
+    // resize the box inside its own observer's callback (the browser then reports a
+    // "ResizeObserver loop" error, which the page shows as a fault).
+    this.resize = new ResizeObserver(() => this.schedule());
     this.resize.observe(this.el);
   }
 

@@ -116,8 +116,14 @@ async function newPage(browser, options = {}) {
 async function shot(page, name) {
   if (process.env.E2E_SCREENSHOTS) await page.screenshot({ path: path.join(process.env.E2E_SCREENSHOTS, `${name}.png`), fullPage: true });
 }
-function noProblems(page) {
+// Script errors, CSP violations, and the page's own fault banner (#page-error), which
+// also catches window "error" events no console message marks as an error.
+async function noProblems(page) {
   assert(page.problems.length === 0, page.problems.join("\n"));
+  const banner = page.locator("#page-error");
+  if ((await banner.count()) > 0 && (await banner.isVisible())) {
+    throw new Error(`the page shows a fault: ${await banner.textContent()}`);
+  }
 }
 
 const service = await startService();
@@ -143,7 +149,7 @@ try {
     await page.click("#submit-check");
     await page.waitForURL(/#\/jobs\/[0-9a-f]{32}$/);
     jobId = page.url().split("/").pop();
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("Job detail: verdict and collisions table as the example's README says", async () => {
@@ -156,7 +162,7 @@ try {
     equal(title, "3 collisions", "verdict title");
     const stats = await page.textContent(".fact-groups");
     assert(/Blocks\s*17/.test(stats), `stats show the blocks: ${stats.slice(0, 200)}`);
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("3D view: data-triangles equals the STL's triangle count, drawn without GL errors", async () => {
@@ -176,7 +182,7 @@ try {
     await page.mouse.wheel(0, -200);
     await page.waitForTimeout(100);
     equal(Number(await canvas.getAttribute("data-triangles")), count, "triangles drawn after orbit and zoom");
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("Clicking a collision highlights its program line and its marker", async () => {
@@ -198,7 +204,18 @@ try {
     await page.click('.program .pl[data-line="12"]');
     equal(await page.getAttribute('.collisions-table tr[data-type="shank_contact"]', "aria-selected"), "true", "line 12 selects the shank row");
     equal(await page.getAttribute("canvas.viewer-canvas", "data-highlight"), "2", "marker 2 highlighted");
-    noProblems(page);
+    await noProblems(page);
+  });
+
+  await step("The job's page opened directly by its address (a shared link): whole, no fault", async () => {
+    const direct = await newPage(browser);
+    await direct.goto(`${service.base}/#/jobs/${jobId}`);
+    await direct.waitForSelector('.verdict[data-verdict="collisions"]');
+    await direct.waitForSelector('canvas.viewer-canvas[data-state="drawn"]', { timeout: 20000 });
+    await direct.waitForSelector(".program .pl");
+    await direct.waitForTimeout(300);
+    await noProblems(direct);
+    await direct.context().close();
   });
 
   await step("Jobs list shows the job as done, newest first", async () => {
@@ -206,7 +223,7 @@ try {
     await page.waitForSelector(`table.jobs tr[data-id="${jobId}"]`);
     equal(await page.getAttribute(`table.jobs tr[data-id="${jobId}"] .badge`, "data-status"), "done", "status");
     equal(await page.getAttribute('a[data-section="jobs"]', "aria-current"), "page", "the Jobs tab is current");
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("A long job: progress shown while it runs, cancelled from its page", async () => {
@@ -224,7 +241,7 @@ try {
     await page.click('button:text("Cancel job")');
     await page.waitForSelector('.verdict[data-verdict="cancelled"]', { timeout: 10000 });
     assert(!(await page.isVisible('button:text("Cancel job")')), "no Cancel once cancelled");
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("A job that fails while it runs: error banner with the line, that line highlighted; deleted", async () => {
@@ -246,7 +263,7 @@ try {
     await page.click('.page-head button:text("Delete")');
     await page.waitForURL(/#\/jobs$/);
     equal((await page.request.get(`${service.base}/api/v1/jobs/${failedId}`)).status(), 404, "deleted job");
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("Jobs list pages with next_cursor: 20 first, older ones on request", async () => {
@@ -266,7 +283,7 @@ try {
     const shown = await page.$$eval("table.jobs tbody tr[data-id]", (trs) => trs.map((t) => t.dataset.id));
     equal(shown, all, "every job once, in order");
     assert(await page.isHidden('button:text("Show older jobs")'), "no more pages");
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("A program that does not interpret: 422 shown with its line and column highlighted", async () => {
@@ -287,7 +304,7 @@ try {
     equal(await page.evaluate(() => document.querySelector(".program-error .pl.hl mark.column").previousSibling.textContent), "G1 X10 Q", "text before the mark");
     assert(/#\/new$/.test(page.url()), "stays on the form");
     await shot(page, "program-error");
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("A bad field: 400 shown with the service's message and field", async () => {
@@ -300,7 +317,7 @@ try {
     await page.fill("#job-json", "{\n  \"tools\": [],\n  oops\n}");
     await page.click("#submit-check");
     await page.waitForFunction(() => /not valid JSON at line 3, column 3/.test(document.querySelector(".submit-result")?.textContent ?? ""));
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("Machines: the presets listed; one copied, registered by PUT, and deleted", async () => {
@@ -330,7 +347,7 @@ try {
     await page.waitForURL(/#\/machines$/);
     await page.waitForSelector('table.machines tr[data-name="3axis-mill"]');
     equal(await page.locator('table.machines tr[data-name="e2e-mill"]').count(), 0, "deleted machine gone");
-    noProblems(page);
+    await noProblems(page);
   });
 
   await step("Tablet: big touch targets and one column", async () => {
@@ -347,7 +364,7 @@ try {
     await tablet.tap('.collisions-table tr[data-type="shank_contact"]');
     await tablet.waitForSelector('.program .pl.hl[data-line="12"]');
     await shot(tablet, "tablet-job");
-    noProblems(tablet);
+    await noProblems(tablet);
     await tablet.context().close();
   });
 
@@ -376,7 +393,7 @@ try {
     await p.click('#token-form button[value="cancel"]');
     await p.waitForSelector(".errors .notice.error");
     assert(/HTTP 401/.test(await p.textContent(".errors .notice.error")), "the 401 is shown");
-    noProblems(p);
+    await noProblems(p);
     await p.context().close();
     guarded.child.kill("SIGTERM");
   });
@@ -428,7 +445,7 @@ try {
       mark("stopped");
       await page.click('a:text("All shadows")');
       await page.waitForSelector('table.shadows tr[data-state="stopped"]');
-      noProblems(page);
+      await noProblems(page);
       sim.child.kill("SIGTERM");
     });
   }
