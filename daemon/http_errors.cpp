@@ -90,7 +90,8 @@ nlohmann::json parseJsonBody(const httplib::Request& req) {
   try {
     return protocol::parseJsonText(req.body);
   } catch (const protocol::FieldError& e) {
-    throw HttpError(400, "bad_json", e.message());
+    if (e.field() == "(document)") throw HttpError(400, "bad_json", e.message());
+    throw HttpError(400, "bad_json", e.what(), {{"field", e.field()}});  // a repeated key
   }
 }
 

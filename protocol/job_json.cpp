@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "protocol/machine_json.h"
 #include "protocol/tool_json.h"
@@ -238,9 +240,77 @@ std::string placeOf(std::string_view text, std::string_view token) {
 
 }  // namespace
 
+namespace {
+
+// Where the parser is: the enclosing objects' current keys and arrays' current
+// indices, to name a repeated key the way FieldError names fields.
+struct JsonPlace {
+  bool object = false;
+  std::set<std::string> keys;
+  std::string key;
+  long index = -1;
+};
+
+// A second, DOM-less pass over a text that parsed: a key given twice in one object
+// is refused (nlohmann keeps the last one, so a job with two "options" or two
+// "machine" silently lost the first). A SAX pass, because nlohmann's parse
+// callback rescans the parent container at every object's end (quadratic: a
+// 15 MB array of small objects took 70-90 s).
+class DuplicateKeys final : public json::json_sax_t {
+ public:
+  bool null() override { return element(); }
+  bool boolean(bool) override { return element(); }
+  bool number_integer(number_integer_t) override { return element(); }
+  bool number_unsigned(number_unsigned_t) override { return element(); }
+  bool number_float(number_float_t, const string_t&) override { return element(); }
+  bool string(string_t&) override { return element(); }
+  bool binary(binary_t&) override { return element(); }
+  bool start_object(std::size_t) override { return open(true); }
+  bool start_array(std::size_t) override { return open(false); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& k) override {
+    JsonPlace& top = stack_.back();
+    top.key = k;
+    if (!top.keys.insert(k).second) {
+      std::string field;
+      for (const JsonPlace& p : stack_) {
+        field +=
+            p.object ? (field.empty() ? "" : ".") + p.key : "[" + std::to_string(p.index) + "]";
+      }
+      throw FieldError(field, "the key \"" + k + "\" appears twice in one object");
+    }
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    return false;
+  }
+
+ private:
+  bool element() {
+    if (!stack_.empty() && !stack_.back().object) ++stack_.back().index;
+    return true;
+  }
+  bool open(bool object) {
+    element();
+    stack_.push_back({object, {}, {}, -1});
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+  std::vector<JsonPlace> stack_;
+};
+
+}  // namespace
+
 json parseJsonText(std::string_view text) {
   try {
-    return json::parse(text.begin(), text.end());
+    json doc = json::parse(text.begin(), text.end());
+    DuplicateKeys keys;
+    json::sax_parse(text.begin(), text.end(), &keys);
+    return doc;
   } catch (const json::parse_error& e) {
     // nlohmann's message already says "parse error at line L, column C: ...".
     throw FieldError("(document)", "invalid JSON: " + jsonMessage(e));

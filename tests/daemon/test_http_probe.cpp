@@ -200,6 +200,40 @@ TEST_F(HttpProbe, OpenApiListsTheStatusesTheRoutesAnswer) {
   }
 }
 
+TEST_F(HttpProbe, AKeyGivenTwiceIsRefusedNotSilentlyOverwritten) {
+  RunningService svc(config());
+  auto cli = svc.client();
+  // A templated job with two "options": the parser kept the last one and the job
+  // ran at the wrong density with a 202.
+  std::string job = tinyJob().dump();
+  job.insert(job.size() - 1, R"(,"options":{"density":40})");
+  auto r = cli->Post("/api/v1/jobs", job, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400) << r->body;
+  EXPECT_EQ(body(r)["error"]["code"], "bad_json") << r->body;
+  EXPECT_EQ(body(r)["error"]["field"], "options") << r->body;
+
+  nlohmann::json twoTools = tinyJob();
+  twoTools["tools"].push_back(twoTools["tools"][0]);
+  twoTools["tools"][1]["number"] = 2;
+  std::string text = twoTools.dump();
+  text.insert(text.rfind(R"("number":2)"), R"("number":3,)");
+  r = cli->Post("/api/v1/jobs", text, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400) << r->body;
+  EXPECT_EQ(body(r)["error"]["field"], "tools[1].number") << r->body;
+
+  r = cli->Put("/api/v1/machines/twice", R"({"name": "a", "name": "b"})", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400) << r->body;
+  EXPECT_EQ(body(r)["error"]["field"], "name") << r->body;
+
+  // The same key in different objects is fine.
+  r = cli->Post("/api/v1/jobs", tinyJob().dump(), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 202) << r->body;
+}
+
 // One raw request on its own connection; what came back before the first reply's
 // status line ended or 5 s passed.
 std::string rawFirstLine(int port, const std::string& request) {
