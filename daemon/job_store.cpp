@@ -161,6 +161,15 @@ void JobStore::finishJob(const std::string& id, const std::string& status,
   s.bind(4, static_cast<std::int64_t>(mesh ? 1 : 0)).bind(5, meshError).bind(6, id).run();
 }
 
+bool JobStore::cancelUnfinished(const std::string& id) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_,
+              "UPDATE jobs SET status = 'cancelled', finished_at = ? "
+              "WHERE id = ? AND status IN ('queued', 'running')");
+  s.bind(1, utcTimestamp()).bind(2, id).run();
+  return db_.changes() > 0;
+}
+
 void JobStore::requeue(const std::string& id) {
   const std::lock_guard<std::mutex> lock(mutex_);
   Statement s(db_, "UPDATE jobs SET status = 'queued', started_at = NULL WHERE id = ?");

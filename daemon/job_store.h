@@ -58,6 +58,9 @@ class JobStore {
   void finishJob(const std::string& id, const std::string& status,
                  const std::optional<std::string>& report, bool mesh,
                  const std::string& meshError = "");
+  // Cancelled, only if still queued or running (a job that finished meanwhile keeps its
+  // report). True when it was cancelled here.
+  bool cancelUnfinished(const std::string& id);
   // Back to queued (shutdown or restart): started_at cleared, attempts kept.
   void requeue(const std::string& id);
   // Removes a job and its mesh; false when there was none.

@@ -85,8 +85,9 @@ void deleteJob(const httplib::Request& req, httplib::Response& res, JobStore& st
   if (r.status == "queued" || r.status == "running") {
     const auto result = pool.cancel(r.id, std::chrono::seconds(5));
     if (result == WorkerPool::Cancelled::kNotActive) {
-      // In the store but in no worker's hands (the pool is stopping): settle it here.
-      store.finishJob(r.id, "cancelled", std::nullopt, false);
+      // In no worker's hands: the pool is stopping, or the job finished since it was
+      // read above. Settle it here only in the first case: a finished job keeps its report.
+      store.cancelUnfinished(r.id);
     }
     const JobRecord now = *store.job(r.id);
     sendJson(res, now.status == "cancelled" || now.status != "running" ? 200 : 202,

@@ -63,5 +63,27 @@ TEST(Restart, OneServicePerDataFolder) {
   }
 }
 
+// DELETE of a job that finishes between the route's read and its cancel: the store
+// cancels only what is still unfinished, so a done job keeps its status and report.
+TEST(JobStoreCancel, OnlyUnfinishedJobsAreCancelled) {
+  TempDir dir;
+  service::JobStore store((dir.path() / "data").string());
+  store.insertJob("00000000000000000000000000000001", tinyJob().dump(), "");
+  store.insertJob("00000000000000000000000000000002", tinyJob().dump(), "");
+  store.markRunning("00000000000000000000000000000002");
+  store.insertJob("00000000000000000000000000000003", tinyJob().dump(), "");
+  store.finishJob("00000000000000000000000000000003", "done", std::string(R"({"status":"clean"})"),
+                  false);
+  EXPECT_TRUE(store.cancelUnfinished("00000000000000000000000000000001"));
+  EXPECT_TRUE(store.cancelUnfinished("00000000000000000000000000000002"));
+  EXPECT_FALSE(store.cancelUnfinished("00000000000000000000000000000003"));
+  EXPECT_EQ(store.job("00000000000000000000000000000001")->status, "cancelled");
+  EXPECT_EQ(store.job("00000000000000000000000000000002")->status, "cancelled");
+  const auto done = store.job("00000000000000000000000000000003");
+  EXPECT_EQ(done->status, "done");
+  ASSERT_TRUE(done->report.has_value());
+  EXPECT_EQ(*done->report, R"({"status":"clean"})");
+}
+
 }  // namespace
 }  // namespace mdhd::service_test
