@@ -255,9 +255,17 @@ void addShadowRoutes(HttpService& http, shadow::ShadowRegistry& shadows, JobStor
                   {{"description", "Binary STL (mm, workpiece frame)."},
                    {"content",
                     {{"model/stl", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}}},
-                 {"404", errorResponse("No such shadow.")}}}}},
-             [&shadows](const httplib::Request& req, httplib::Response& res) {
-               const std::string stl = findShadow(shadows, req)->stockStl();
+                 {"404", errorResponse("No such shadow.")},
+                 {"409", errorResponse("The mesh is over `max_mesh_mb` (`mesh_too_large`).")}}}}},
+             [&shadows, &config](const httplib::Request& req, httplib::Response& res) {
+               // Built in memory: capped like a job's mesh file, or a fine live stock
+               // could take the service's memory with it.
+               std::string stl;
+               const cli::StlOutcome outcome =
+                   findShadow(shadows, req)->stockStl(stl, config.max_mesh_mb << 20);
+               if (outcome.failure == cli::StlOutcome::Failure::kTooLarge) {
+                 throw HttpError(409, "mesh_too_large", outcome.error);
+               }
                res.set_content(stl, "model/stl");
              });
   http.route({"DELETE",

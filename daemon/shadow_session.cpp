@@ -215,17 +215,16 @@ void ShadowSession::refreshReport(std::chrono::milliseconds min_age) {
   settled_.notify_all();
 }
 
-std::string ShadowSession::stockStl() const {
+cli::StlOutcome ShadowSession::stockStl(std::string& out, std::uint64_t maxBytes) const {
   std::unique_ptr<mdh::Stock> copy;
   {
     std::lock_guard lock(sim_mutex_);
     copy = carver_->simulation().stock().clone();
   }
-  std::ostringstream out;
-  protocol::StlWriter stl(out, "mdhd shadow " + id_ + ": live stock (mm, workpiece frame)");
-  mesh::meshStock(*copy, stl);
-  stl.finish();
-  return std::move(out).str();
+  cli::StlLimits limits;
+  limits.max_bytes = maxBytes;
+  return cli::stockStlBytes(*copy, "mdhd shadow " + id_ + ": live stock (mm, workpiece frame)",
+                            limits, out);
 }
 
 double ShadowSession::stockVolume() const {

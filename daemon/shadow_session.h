@@ -30,6 +30,7 @@
 #include "daemon/shadow_lookahead.h"
 #include "daemon/shadow_program.h"
 #include "daemon/shadow_spec.h"
+#include "daemon/stock_stl.h"
 #include "protocol/modbus_client.h"
 
 namespace mdhd::shadow {
@@ -101,8 +102,9 @@ class ShadowSession {
   nlohmann::json status() const;
   // {"id", "state", "samples", "host", "port"}: an entry of GET /api/v1/shadows.
   nlohmann::json summary() const;
-  // The live stock as binary STL.
-  std::string stockStl() const;
+  // The live stock as binary STL in `out`, at most `maxBytes` (0: no cap); over it,
+  // the outcome says kTooLarge and `out` is empty.
+  cli::StlOutcome stockStl(std::string& out, std::uint64_t maxBytes) const;
   double stockVolume() const;
   // Waits until every sample polled so far is cut and the look-ahead is idle;
   // false on timeout. For tests and benchmarks.

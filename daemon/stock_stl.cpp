@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "protocol/stl.h"
@@ -66,6 +67,27 @@ class CountingSink final : public mesh::MeshSink {
 };
 
 const char* const kHeader = "mdhd check: final stock (mm, workpiece frame)";
+
+}  // namespace
+
+StlOutcome stockStlBytes(const mdh::Stock& stock, const std::string& header,
+                         const StlLimits& limits, std::string& out) {
+  out.clear();
+  std::ostringstream text;
+  try {
+    protocol::StlWriter stl(text, header);
+    GuardedSink sink(stl, text, limits);
+    mesh::meshStock(stock, sink);
+    sink.check();
+    stl.finish();
+  } catch (const MeshTooLarge& e) {
+    return {StlOutcome::Failure::kTooLarge, e.what()};
+  }
+  out = std::move(text).str();
+  return {};
+}
+
+namespace {
 
 // A pipe, terminal or device (`--mesh /dev/stdout`, a FIFO): written straight
 // through, the triangle count first, so the mesh is made twice (once to count).

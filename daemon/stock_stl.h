@@ -33,6 +33,11 @@ struct StlOutcome {
   std::string error;  // "" on success
 };
 
+// The stock as binary STL bytes in `out` (a live shadow's mesh, served from memory),
+// within `limits`: over `max_bytes` it stops at the cap and says so, `out` cleared.
+StlOutcome stockStlBytes(const mdh::Stock& stock, const std::string& header,
+                         const StlLimits& limits, std::string& out);
+
 // As above, within `limits`. A cancelled or failed write leaves nothing under
 // `path` (nor its temporary); check::Cancelled is rethrown after that.
 StlOutcome writeStockStl(const mdh::Stock& stock, const std::filesystem::path& path, int threads,
