@@ -28,6 +28,16 @@ double progressOf(const JobRecord& r, const WorkerPool& pool) {
   return 0.0;
 }
 
+// The report's verdict in a line: what a list of jobs needs to show which are safe.
+nlohmann::json verdictOf(const std::string& reportText) {
+  const nlohmann::json report = nlohmann::json::parse(reportText, nullptr, false);
+  if (!report.is_object() || !report.contains("status")) return nullptr;
+  nlohmann::json v = {{"status", report["status"]}};
+  const auto collisions = report.find("collisions");
+  v["collisions"] = collisions != report.end() && collisions->is_array() ? collisions->size() : 0;
+  return v;
+}
+
 nlohmann::json summary(const JobRecord& r, const WorkerPool& pool) {
   nlohmann::json j = {{"id", r.id},
                       {"status", r.status},
@@ -39,6 +49,7 @@ nlohmann::json summary(const JobRecord& r, const WorkerPool& pool) {
   if (!r.started_at.empty()) j["started_at"] = r.started_at;
   if (!r.finished_at.empty()) j["finished_at"] = r.finished_at;
   if (r.mesh) j["mesh"] = std::string(kJobs) + "/" + r.id + "/mesh";
+  if (r.report) j["verdict"] = verdictOf(*r.report);
   if (!r.mesh_error.empty()) j["mesh_error"] = nlohmann::json::parse(r.mesh_error, nullptr, false);
   return j;
 }
@@ -167,6 +178,14 @@ nlohmann::json jobStatusSchema() {
               {"properties",
                {{"code", {{"enum", {"mesh_too_large", "mesh_write_failed"}}}},
                 {"message", {{"type", "string"}}}}}}},
+            {"verdict",
+             {{"type", "object"},
+              {"description",
+               "When finished: the report's status and its number of collisions, also in "
+               "the listing (which carries no reports)."},
+              {"properties",
+               {{"status", {{"enum", {"clean", "collisions", "error"}}}},
+                {"collisions", {{"type", "integer"}, {"minimum", 0}}}}}}},
             {"report", schemaRef("Report")}}}};
 }
 

@@ -144,6 +144,20 @@ export function verdict(job) {
   return { kind: "neutral", title: statusLabel(status), detail: "" };
 }
 
+// A listed job's result in a word or two, from the listing's `verdict` ({status,
+// collisions}); {kind, text}, kind as in verdict(). Null while it has none.
+export function listVerdict(job) {
+  const v = job?.verdict;
+  if (!v) return null;
+  if (v.status === "clean") return { kind: "clean", text: "Clean" };
+  if (v.status === "collisions") {
+    const n = Number(v.collisions) || 0;
+    return { kind: "collisions", text: `${n} collision${n === 1 ? "" : "s"}` };
+  }
+  if (v.status === "error") return { kind: "error", text: "Error" };
+  return null;
+}
+
 // A report's error as one sentence: where (line and column, or field) and what.
 export function reportErrorText(error) {
   if (!error || typeof error !== "object") return "The job failed without a report.";

@@ -2,12 +2,19 @@
 import { h, fill, table } from "./dom.js";
 import { apiJson } from "./api.js";
 import { hashFor } from "./router.js";
-import { formatTimestamp, shortId } from "./format.js";
+import { formatTimestamp, listVerdict, shortId } from "./format.js";
 import { errorBox, statusBadge, progressBar, pageHead, pause, isAbort } from "./ui.js";
 
 const PAGE = 20;
 const REFRESH_MS = 1500;
 const IDLE_REFRESH_MS = 5000;
+
+// Clean / N collisions / Error at a glance: which programs are safe to run.
+function resultBadge(job) {
+  const v = listVerdict(job);
+  if (!v) return "–";
+  return h("span", { class: `badge verdict-${v.kind}`, dataset: { verdict: v.kind } }, v.text);
+}
 
 export function renderJobs(main, route, signal) {
   document.title = "Jobs · mdhd";
@@ -24,13 +31,14 @@ export function renderJobs(main, route, signal) {
     errors,
     h("div", { class: "table-wrap" },
       h("table", { class: "grid jobs" },
-        h("thead", {}, h("tr", {}, ["Job", "Status", "Progress", "Machine", "Submitted", "Finished"].map((t) => h("th", { scope: "col" }, t)))),
+        h("thead", {}, h("tr", {}, ["Job", "Status", "Result", "Progress", "Machine", "Submitted", "Finished"].map((t) => h("th", { scope: "col" }, t)))),
         body)),
     empty, live, h("div", { class: "buttons" }, more));
 
   const row = (job) => h("tr", { dataset: { id: job.id, status: job.status } },
     h("td", {}, h("a", { href: hashFor("job", { id: job.id }), class: "job-link", title: job.id }, h("code", {}, shortId(job.id)))),
     h("td", {}, statusBadge(job.status)),
+    h("td", {}, resultBadge(job)),
     h("td", {}, job.status === "running" || job.status === "queued" ? progressBar(job.progress) : "–"),
     h("td", {}, typeof job.machine === "string" ? job.machine : "inline"),
     h("td", {}, formatTimestamp(job.created_at)),

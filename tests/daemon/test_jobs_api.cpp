@@ -81,6 +81,18 @@ TEST_F(JobsApi, ExampleJobsGiveWhatCheckGives) {
   // The examples' own verdicts, as the README of the examples states them.
   EXPECT_EQ(waitSettled(*cli, ids["crash-3axis"])["report"]["status"], "collisions");
   EXPECT_EQ(waitSettled(*cli, ids["contour-3axis"])["report"]["status"], "clean");
+  // The listing carries no reports, but each finished job's verdict: its report's status
+  // and number of collisions.
+  const nlohmann::json list = getJson(*cli, "/api/v1/jobs");
+  ASSERT_EQ(list["jobs"].size(), examples.size());
+  for (const auto& j : list["jobs"]) {
+    EXPECT_FALSE(j.contains("report"));
+    const nlohmann::json report = waitSettled(*cli, j["id"])["report"];
+    EXPECT_EQ(j["verdict"]["status"], report["status"]) << j.dump();
+    EXPECT_EQ(j["verdict"]["collisions"], report["collisions"].size()) << j.dump();
+  }
+  const nlohmann::json crash = waitSettled(*cli, ids["crash-3axis"]);
+  EXPECT_EQ(crash["verdict"], nlohmann::json({{"status", "collisions"}, {"collisions", 3}}));
 }
 
 TEST_F(JobsApi, MachinesByNameAndTheRegistry) {

@@ -218,10 +218,13 @@ try {
     await direct.context().close();
   });
 
-  await step("Jobs list shows the job as done, newest first", async () => {
+  await step("Jobs list shows the job as done with its verdict, newest first", async () => {
     await page.click('nav a[data-section="jobs"]');
     await page.waitForSelector(`table.jobs tr[data-id="${jobId}"]`);
     equal(await page.getAttribute(`table.jobs tr[data-id="${jobId}"] .badge`, "data-status"), "done", "status");
+    const result = page.locator(`table.jobs tr[data-id="${jobId}"] [data-verdict]`);
+    equal(await result.getAttribute("data-verdict"), "collisions", "verdict kind");
+    equal(await result.textContent(), "3 collisions", "verdict text");
     equal(await page.getAttribute('a[data-section="jobs"]', "aria-current"), "page", "the Jobs tab is current");
     await noProblems(page);
   });

@@ -129,3 +129,12 @@ test("prettyJson: readable, and the same value back", () => {
   assert.equal(f.prettyJson(null), "null");
   assert.equal(f.prettyJson([1, null, "a"]), "[1, null, \"a\"]");
 });
+
+test("listVerdict: the listing's verdict in a word or two", () => {
+  assert.deepEqual(f.listVerdict({ verdict: { status: "clean", collisions: 0 } }), { kind: "clean", text: "Clean" });
+  assert.deepEqual(f.listVerdict({ verdict: { status: "collisions", collisions: 3 } }), { kind: "collisions", text: "3 collisions" });
+  assert.deepEqual(f.listVerdict({ verdict: { status: "collisions", collisions: 1 } }), { kind: "collisions", text: "1 collision" });
+  assert.deepEqual(f.listVerdict({ verdict: { status: "error", collisions: 0 } }), { kind: "error", text: "Error" });
+  assert.equal(f.listVerdict({ status: "running" }), null);
+  assert.equal(f.listVerdict({ verdict: null }), null);
+});
