@@ -125,17 +125,20 @@ void checkQueryParameters(const httplib::Request& req,
   }
 }
 
-namespace {
-
-// Up to 19 decimal digits (no sign, no spaces) as a number.
-std::optional<std::uint64_t> decimal(std::string_view text) {
-  if (text.empty() || text.size() > 19) return std::nullopt;
+std::optional<std::uint64_t> decimalDigits(std::string_view text, std::size_t maxDigits) {
+  if (text.empty() || text.size() > maxDigits || maxDigits > 19) return std::nullopt;
   std::uint64_t v = 0;
   for (char c : text) {
     if (c < '0' || c > '9') return std::nullopt;
     v = v * 10 + static_cast<std::uint64_t>(c - '0');
   }
   return v;
+}
+
+namespace {
+
+std::optional<std::uint64_t> decimal(std::string_view text) {
+  return decimalDigits(text, 19);
 }
 
 std::string_view trimmed(std::string_view text) {

@@ -58,13 +58,7 @@ bool segmentsMatch(const std::vector<std::string>& templ, const std::string& pat
 
 // A Content-Length value: digits only (no sign, no spaces), at most 18 of them.
 std::optional<std::uint64_t> contentLength(const std::string& text) {
-  if (text.empty() || text.size() > 18) return std::nullopt;
-  std::uint64_t v = 0;
-  for (char c : text) {
-    if (c < '0' || c > '9') return std::nullopt;
-    v = v * 10 + static_cast<std::uint64_t>(c - '0');
-  }
-  return v;
+  return decimalDigits(text, 18);
 }
 
 std::string regexEscape(const std::string& text) {

@@ -18,6 +18,7 @@
 #include "../modbus/sim_process.h"
 #include "daemon/http_errors.h"
 #include "job_helpers.h"
+#include "raw_socket.h"
 #include "service_fixture.h"
 
 namespace mdhd::service_test {
@@ -29,19 +30,6 @@ const std::string kHardToken = "0123456789abcdef-hardening-token";
 
 double secondsSince(HardClock::time_point t0) {
   return std::chrono::duration<double>(HardClock::now() - t0).count();
-}
-
-int connectLoopback(int port) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    close(fd);
-    return -1;
-  }
-  return fd;
 }
 
 void sendAll(int fd, const std::string& data) {

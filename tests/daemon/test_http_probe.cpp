@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "job_helpers.h"
+#include "raw_socket.h"
 #include "service_fixture.h"
 
 namespace mdhd::service_test {
@@ -237,15 +238,8 @@ TEST_F(HttpProbe, AKeyGivenTwiceIsRefusedNotSilentlyOverwritten) {
 // One raw request on its own connection; what came back before the first reply's
 // status line ended or 5 s passed.
 std::string rawFirstLine(int port, const std::string& request) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    close(fd);
-    return 0;
-  }
+  const int fd = connectLoopback(port);
+  if (fd < 0) return "";
   std::size_t off = 0;
   while (off < request.size()) {
     const ssize_t n = send(fd, request.data() + off, request.size() - off, MSG_NOSIGNAL);
