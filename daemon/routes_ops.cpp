@@ -18,7 +18,12 @@ void addOpsRoutes(HttpService& http, Metrics& metrics, std::function<std::string
               false},
              [unready](const httplib::Request&, httplib::Response& res) {
                const std::string why = unready();
-               if (!why.empty()) throw HttpError(503, "unavailable", why);
+               if (!why.empty()) {
+                 // When to ask again, as a full queue's 429 says it: load balancers and
+                 // clients back off instead of hammering.
+                 res.set_header("Retry-After", "5");
+                 throw HttpError(503, "unavailable", why);
+               }
                sendJson(res, 200, {{"status", "ok"}});
              });
   http.route({"GET",

@@ -334,6 +334,7 @@ TEST_F(JobsApi, FullQueueIs429AndHealthzSaysSo) {
   auto health = cli->Get("/healthz");
   ASSERT_TRUE(health);
   EXPECT_EQ(health->status, 503);
+  EXPECT_EQ(health->get_header_value("Retry-After"), "5");
   // Cancelling the running job lets the queue drain and the service take work again.
   auto cancel = cli->Delete(("/api/v1/jobs/" + running.body["id"].get<std::string>()).c_str());
   ASSERT_TRUE(cancel);
