@@ -22,7 +22,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const bool schemaAccepts = protocol::jobSchema().validate(doc).empty();
   protocol::Job job;
   try {
-    job = protocol::jobFromJson(doc, protocol::ProgramRequirement::kOptional);
+    // As a job is read (the schema requires program or program_file); shadows, which
+    // may go without a program, have a schema of their own.
+    job = protocol::jobFromJson(doc, protocol::ProgramRequirement::kRequired);
   } catch (const protocol::FieldError&) {
     return 0;
   }
