@@ -5,6 +5,13 @@
 namespace mdhd::service {
 
 std::optional<long long> integerInRange(const std::string& text, long long lo, long long hi) {
+  // Digits with an optional '-', nothing else: std::stoll alone also takes leading
+  // spaces and a '+' ("?limit=+2", "--port ' 80'").
+  const std::size_t digits = !text.empty() && text[0] == '-' ? 1 : 0;
+  if (text.size() == digits) return std::nullopt;
+  for (std::size_t i = digits; i < text.size(); ++i) {
+    if (text[i] < '0' || text[i] > '9') return std::nullopt;
+  }
   std::size_t used = 0;
   long long v = 0;
   try {

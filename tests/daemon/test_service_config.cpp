@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "daemon/number_text.h"
 #include "daemon/service_config.h"
 #include "service_fixture.h"
 
@@ -66,6 +67,20 @@ TEST(ServiceConfig, BadValuesNameTheirSource) {
   EXPECT_THROW(service::applyFlags(c, {"--max-job-seconds", "-1"}), protocol::FieldError);
   EXPECT_THROW(service::applyConfigFile(c, (dir.path() / "missing.json").string()),
                protocol::FieldError);
+}
+
+// Integers in flags, the environment and query strings are digits with an optional
+// '-': std::stoll alone took " 80", "+2" and "\t3" as numbers.
+TEST(ServiceConfig, IntegersAreDigitsOnly) {
+  EXPECT_EQ(service::integerInRange("80", 0, 65535), 80);
+  EXPECT_EQ(service::integerInRange("-5", -10, 10), -5);
+  EXPECT_EQ(service::integerInRange("007", 0, 10), 7);
+  for (const char* bad : {"", "-", "+2", " 80", "80 ", "\t3", "8O", "0x10", "1e3", "--1"}) {
+    EXPECT_FALSE(service::integerInRange(bad, -100000, 100000)) << "'" << bad << "'";
+  }
+  EXPECT_FALSE(service::integerInRange("99999999999999999999", 0, 10));
+  ServiceConfig c;
+  EXPECT_THROW(service::applyFlags(c, {"--port", "+80"}), protocol::FieldError);
 }
 
 TEST(ServiceConfig, BeyondLoopbackNeedsLongTokens) {
