@@ -61,6 +61,13 @@ std::optional<std::uint64_t> contentLength(const std::string& text) {
   return decimalDigits(text, 18);
 }
 
+// What a route's method adds to an Allow list so far: GET brings HEAD, which every
+// GET route answers.
+std::string allowedMethods(const std::string& sofar, const std::string& method) {
+  const std::string sep = sofar.empty() ? "" : ", ";
+  return method == "GET" ? sep + "GET, HEAD" : sep + method;
+}
+
 std::string regexEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
@@ -195,8 +202,7 @@ void HttpService::handleUnrouted(const httplib::Request& req, httplib::Response&
   if (res.status == 404) {
     std::string allowed;
     for (const Registered& r : routes_) {
-      if (std::regex_match(req.path, r.pattern))
-        allowed += (allowed.empty() ? "" : ", ") + r.route.method;
+      if (std::regex_match(req.path, r.pattern)) allowed += allowedMethods(allowed, r.route.method);
     }
     if (allowed.empty()) {
       code = "not_found";
@@ -247,7 +253,7 @@ bool HttpService::screen(const httplib::Request& req, httplib::Response& res) {
   std::string allowed;
   for (const Registered& r : routes_) {
     if (!segmentsMatch(r.segments, req.path)) continue;
-    allowed += (allowed.empty() ? "" : ", ") + r.route.method;
+    allowed += allowedMethods(allowed, r.route.method);
     if (r.route.method == req.method || (req.method == "HEAD" && r.route.method == "GET"))
       match = &r;
   }

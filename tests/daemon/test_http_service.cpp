@@ -89,6 +89,11 @@ TEST(HttpService, ErrorsAreJsonWithTheRightStatus) {
   ASSERT_TRUE(wrongMethod);
   EXPECT_EQ(wrongMethod->status, 405);
   EXPECT_EQ(wrongMethod->get_header_value("Allow"), "POST");
+  // A GET route answers HEAD too, and says so.
+  auto post = cli->Post("/healthz", "", "text/plain");
+  ASSERT_TRUE(post);
+  EXPECT_EQ(post->status, 405);
+  EXPECT_EQ(post->get_header_value("Allow"), "GET, HEAD");
 
   auto badJson = cli->Post("/api/v1/echo", "{\"k\": [1, 2", "application/json");
   ASSERT_TRUE(badJson);
