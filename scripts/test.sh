@@ -3,7 +3,7 @@
 # with AddressSanitizer + UndefinedBehaviorSanitizer) and runs every test in both.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+bash scripts/install-deps.sh --test
 jobs=$(nproc 2>/dev/null || echo 2)
 # The browser UI's test tools (web/package-lock.json: playwright-core, no browser download).
 npm ci --prefix web --no-audit --no-fund --loglevel=error >/dev/null
