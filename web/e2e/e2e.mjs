@@ -38,6 +38,9 @@ try {
   die("playwright-core is not installed in web/node_modules: run `npm ci --prefix web` (scripts/test.sh does).");
 }
 
+const axePath = path.join(webDir, "node_modules/axe-core/axe.min.js");
+if (!existsSync(axePath)) die("axe-core is not installed in web/node_modules: run `npm ci --prefix web` (scripts/test.sh does).");
+
 const children = [];
 const temps = [];
 function cleanup() {
@@ -351,6 +354,25 @@ try {
     await page.waitForSelector('table.machines tr[data-name="3axis-mill"]');
     equal(await page.locator('table.machines tr[data-name="e2e-mill"]').count(), 0, "deleted machine gone");
     await noProblems(page);
+  });
+
+  await step("Accessibility: axe-core finds no violations on any page", async () => {
+    // axe is injected as an inline script, which the page's own CSP forbids: a context
+    // that bypasses CSP for this step only.
+    const a11y = await newPage(browser, { bypassCSP: true });
+    const axe = readFileSync(axePath, "utf8");
+    const found = [];
+    for (const hash of ["#/jobs", "#/new", `#/jobs/${jobId}`, "#/shadows", "#/machines", "#/machines/3axis-mill"]) {
+      await a11y.goto(`${service.base}/${hash}`);
+      await a11y.waitForSelector("main h1");
+      await a11y.waitForTimeout(300);
+      await a11y.addScriptTag({ content: axe });
+      const r = await a11y.evaluate(async () => await window.axe.run(document, { resultTypes: ["violations"] }));
+      assert(r.passes.length > 10, `axe checked ${r.passes.length} rules on ${hash}`);
+      for (const v of r.violations) found.push(`${hash}: ${v.id} (${v.impact}) ${v.help}, e.g. ${v.nodes[0]?.target.join(" ")}`);
+    }
+    assert(found.length === 0, found.join("\n"));
+    await a11y.context().close();
   });
 
   await step("Tablet: big touch targets and one column", async () => {
