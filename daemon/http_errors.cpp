@@ -125,21 +125,7 @@ void checkQueryParameters(const httplib::Request& req,
   }
 }
 
-std::optional<std::uint64_t> decimalDigits(std::string_view text, std::size_t maxDigits) {
-  if (text.empty() || text.size() > maxDigits || maxDigits > 19) return std::nullopt;
-  std::uint64_t v = 0;
-  for (char c : text) {
-    if (c < '0' || c > '9') return std::nullopt;
-    v = v * 10 + static_cast<std::uint64_t>(c - '0');
-  }
-  return v;
-}
-
 namespace {
-
-std::optional<std::uint64_t> decimal(std::string_view text) {
-  return decimalDigits(text, 19);
-}
 
 std::string_view trimmed(std::string_view text) {
   while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
@@ -166,14 +152,14 @@ std::optional<ByteRange> requestedByteRange(const httplib::Request& req, httplib
   ByteRange range;
   bool satisfiable = false;
   if (firstText.empty()) {  // "-N": the last N bytes
-    const auto n = decimal(lastText);
+    const auto n = decimalDigits(lastText, 19);
     if (!n) return std::nullopt;
     satisfiable = *n > 0 && size > 0;
     range = {size > *n ? size - *n : 0, size > 0 ? size - 1 : 0};
   } else {
-    const auto first = decimal(firstText);
+    const auto first = decimalDigits(firstText, 19);
     const auto last =
-        lastText.empty() ? std::optional<std::uint64_t>(UINT64_MAX) : decimal(lastText);
+        lastText.empty() ? std::optional<std::uint64_t>(UINT64_MAX) : decimalDigits(lastText, 19);
     if (!first || !last || *last < *first) return std::nullopt;
     satisfiable = *first < size;
     range = {*first, std::min(*last, size > 0 ? size - 1 : 0)};

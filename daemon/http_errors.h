@@ -60,10 +60,6 @@ long long queryInteger(const httplib::Request& req, const char* name, long long 
 void checkQueryParameters(const httplib::Request& req,
                           std::initializer_list<std::string_view> known);
 
-// Digits only (no sign, no spaces), at most `maxDigits` (<= 19, so it fits), as a
-// number: how Content-Length and byte-range positions are read.
-std::optional<std::uint64_t> decimalDigits(std::string_view text, std::size_t maxDigits);
-
 // The one byte range a GET asks for with `Range: bytes=...` (RFC 9110 14.2), as
 // [first, last] of a body of `size` bytes. None: serve the whole body (no Range,
 // an If-Range (the service sends no validators), several ranges, another unit, a

@@ -11,6 +11,7 @@
 
 #include "daemon/guarded_server.h"
 #include "daemon/http_errors.h"
+#include "daemon/number_text.h"
 #include "daemon/openapi_parts.h"
 
 namespace mdhd::service {

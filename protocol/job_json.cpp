@@ -238,10 +238,6 @@ std::string placeOf(std::string_view text, std::string_view token) {
   return "line " + std::to_string(line) + ", column " + std::to_string(column) + ": ";
 }
 
-}  // namespace
-
-namespace {
-
 // Where the parser is: the enclosing objects' current keys and arrays' current
 // indices, to name a repeated key the way FieldError names fields.
 struct JsonPlace {
