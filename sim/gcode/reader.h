@@ -146,6 +146,21 @@ class Reader {
   Control& pushControl(std::vector<Control>& controls);
   Control& topControl(ControlKind kind, const OWordHead& head, const Cursor& c);
   void countIteration(Control& control);
+  // LinuxCNC keeps one if / while / do / repeat line per label in the program and in
+  // each subroutine (subroutine names are apart): the first such line met claims the
+  // label; another line with it is an error, except a while that closes a do and a
+  // second do, which loops back to the first. claimLabel records or checks and returns
+  // the claim; checkLabel only checks (blocks of the label met while skipping).
+  struct LabelClaim {
+    ControlKind kind = ControlKind::kIf;
+    int source = 0;
+    int line = 0;
+    int column = 1;
+    std::uint64_t offset = 0;  // do: the line after it
+  };
+  const LabelClaim& claimLabel(const OWordHead& head, ControlKind kind);
+  void checkLabel(const OWordHead& head, ControlKind kind, const LabelClaim& claim) const;
+  std::string labelKey(const std::string& label) const;
   // An error of a whole line or block: `column` is where its first word (or O-word) stands.
   [[noreturn]] void failLine(int line, int column, const std::string& message) const;
   int firstColumn() const { return text_.columns.empty() ? 1 : text_.columns.front(); }
@@ -156,6 +171,7 @@ class Reader {
   ReaderOptions options_;
   ExpressionReader expressions_;
   std::unordered_map<std::string, SubDef, Hash, std::equal_to<>> subs_;
+  std::unordered_map<std::string, LabelClaim, Hash, std::equal_to<>> label_claims_;
   std::vector<Frame> frames_;
   std::vector<Assignment> assignments_;  // reused: no allocation per line
   std::size_t assignment_count_ = 0;

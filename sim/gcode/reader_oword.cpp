@@ -13,6 +13,11 @@ std::string labelText(std::string_view label) {
   return "o<" + std::string(label) + ">";
 }
 
+std::string_view kindName(int kind) {
+  static constexpr std::string_view kNames[] = {"if", "while", "do", "repeat"};
+  return kNames[kind];
+}
+
 }  // namespace
 
 void Reader::handleOWord(Cursor& c) {
@@ -222,6 +227,7 @@ void Reader::handleIf(Cursor& c, const OWordHead& head) {
   switch (head.keyword) {
     case OKeyword::kIf: {
       const bool condition = readCondition(c, head) != 0.0;
+      claimLabel(head, ControlKind::kIf);
       Control& control = pushControl(controls);
       control.kind = ControlKind::kIf;
       control.label = head.label;
@@ -283,16 +289,20 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
   const bool top_matches = !controls.empty() && controls.back().label == head.label;
   if (head.keyword == OKeyword::kDo) {
     readTrailingComments(c);
+    // A do whose label an earlier do claimed loops back to that one (LinuxCNC).
+    const LabelClaim claim = claimLabel(head, ControlKind::kDo);
+    const bool earlier_do = claim.kind == ControlKind::kDo;
     Control& control = pushControl(controls);
     control.kind = ControlKind::kDo;
     control.label = head.label;
-    control.offset = source().tell();
-    control.line = ref_.line;
-    control.column = openedHere(head).column;
+    control.offset = earlier_do ? claim.offset : source().tell();
+    control.line = earlier_do ? claim.line : ref_.line;
+    control.column = earlier_do ? claim.column : openedHere(head).column;
     return;
   }
   if (head.keyword == OKeyword::kRepeat) {
     const double count = std::nearbyint(readCondition(c, head));  // LinuxCNC rounds the count
+    claimLabel(head, ControlKind::kRepeat);
     const Opened here = openedHere(head);
     if (!(count >= 1.0)) {
       skipTo(head.label, {OKeyword::kEndRepeat}, here, "repeat");
@@ -309,6 +319,7 @@ void Reader::handleWhile(Cursor& c, const OWordHead& head) {
   }
   // while: the end of a do-while, a loop coming round again, or a new loop.
   const bool condition = readCondition(c, head) != 0.0;
+  claimLabel(head, ControlKind::kWhile);
   if (top_matches && controls.back().kind == ControlKind::kDo) {
     Control& control = controls.back();
     if (condition) {
@@ -355,6 +366,41 @@ void Reader::handleLoopEnd(Cursor& c, const OWordHead& head) {
   countIteration(control);
   source().seek(control.offset);
   source().setLineNumber(control.line);
+}
+
+std::string Reader::labelKey(const std::string& label) const {
+  std::string key = frames_.back().name;  // "" in the program; sub names are non-empty
+  key += '\n';
+  key += label;
+  return key;
+}
+
+const Reader::LabelClaim& Reader::claimLabel(const OWordHead& head, ControlKind kind) {
+  const auto [it, inserted] = label_claims_.try_emplace(labelKey(head.label));
+  if (inserted) {
+    LabelClaim& claim = it->second;
+    claim.kind = kind;
+    claim.source = frames_.back().source;
+    claim.line = ref_.line;
+    claim.column = openedHere(head).column;
+    claim.offset = kind == ControlKind::kDo ? source().tell() : 0;
+  } else {
+    checkLabel(head, kind, it->second);
+  }
+  return it->second;
+}
+
+void Reader::checkLabel(const OWordHead& head, ControlKind kind, const LabelClaim& claim) const {
+  if (kind == ControlKind::kDo) return;
+  if (kind == ControlKind::kWhile && claim.kind == ControlKind::kDo) return;  // closes the do
+  if (claim.source == frames_.back().source && claim.line == ref_.line) return;
+  failLine(ref_.line, openedHere(head).column,
+           "Duplicate O-word label " + labelText(head.label) + ": " +
+               std::string(kindName(static_cast<int>(kind))) + " here, but line " +
+               std::to_string(claim.line) + " already opens " + labelText(head.label) + " " +
+               std::string(kindName(static_cast<int>(claim.kind))) +
+               " (LinuxCNC: one if / while / do / repeat line per label in the program and in "
+               "each subroutine)");
 }
 
 Reader::Opened Reader::openedHere(const OWordHead& head) const {
@@ -423,6 +469,14 @@ OKeyword Reader::skipTo(const std::string& label, std::initializer_list<OKeyword
     for (OKeyword stop : stops) {
       if (head.keyword == stop) return stop;
     }
+    // LinuxCNC reads the blocks of the label it skips to: another if / while / repeat
+    // line of that label is a duplicate.
+    if (in_definition) continue;
+    const auto claimed = label_claims_.find(labelKey(label));
+    if (claimed == label_claims_.end()) continue;
+    if (head.keyword == OKeyword::kIf) checkLabel(head, ControlKind::kIf, claimed->second);
+    if (head.keyword == OKeyword::kWhile) checkLabel(head, ControlKind::kWhile, claimed->second);
+    if (head.keyword == OKeyword::kRepeat) checkLabel(head, ControlKind::kRepeat, claimed->second);
   }
   std::string wanted;
   for (OKeyword stop : stops) {
