@@ -104,9 +104,17 @@ void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
   constexpr std::uint32_t kChecked = bit('D') | bit('E') | bit('H') | bit('I') | bit('J') |
                                      bit('K') | bit('L') | bit('P') | bit('Q') | bit('R');
   const bool cycle = isCycle(motion);
+  const int m_spindle = w.m[kMSpindle];
+  const int m_override = w.m[kMOverride];
+  if (w.spindle_column != 0 && m_spindle < 0 && m_override != 510 && motion != 330 &&
+      motion != 331 && w.g[kGSpindleMode] < 0 && !w.has('S'))
+    failAt(block, w.spindle_column,
+           "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G96, G97 or S "
+           "word to use it");
   // Most blocks (G1 X Y Z F) have none of these: nothing to check.
   if (!(w.letters & kChecked) && !cycle && motion != 330 && motion != 331) return;
   const bool arc = motion == 20 || motion == 30;
+  const bool orient = m_spindle == 190;  // M19: R angle, Q timeout, P direction
   const int g0 = w.g[kGNonModal];
   const bool g10 = g0 == 100;
   auto reject = [&](char c, bool unused, const char* text) {
@@ -119,7 +127,8 @@ void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
   reject('D', !isCompOn(g7) && w.g[kGSpindleMode] != 960,
          "D word with no G41, G41.1, G42, G42.1, or G96 to use it");
   const int m_io = w.m[kMIo];
-  reject('E', m_io != 660, "E word with no G76, M66, M67 or M68 to use it");
+  const bool analog_out = m_io == 670 || m_io == 680;
+  reject('E', m_io != 660 && !analog_out, "E word with no G76, M66, M67 or M68 to use it");
   const int g8 = w.g[kGToolLength];
   reject('H', g8 != 430 && g8 != 432 && g8 != 434, "H word with no G43 or G76 to use it");
   const bool ij_used = arc || motion == 50 || motion == 51 || motion == 870 || g10;
@@ -130,27 +139,27 @@ void checkArgumentLetters(const Block& block, const BlockWords& w, int motion) {
   reject('L', !cycle && motion != 52 && !g10 && !isCompOn(g7) && m_io != 660,
          "L word with no G10, cutter compensation, canned cycle, digital/analog input, or NURBS "
          "code");
-  const int m_override = w.m[kMOverride];
   const bool p_used = g10 || g0 == 40 || w.g[kGPathMode] == 640 || arc || motion == 50 ||
                       motion == 52 || motion == 740 || motion == 820 || motion == 840 ||
                       motion == 860 || motion == 880 || motion == 890 ||
-                      (m_override >= 500 && m_override <= 530) || m_io >= 0;
+                      (m_override >= 500 && m_override <= 530) || (m_io >= 0 && !analog_out) ||
+                      orient;
   reject('P', !p_used,
          "P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 "
          "M63 M64 M65 M66 or user M code to use it");
-  if (arc && w.has('P')) {
+  if ((arc || orient) && w.has('P')) {
     const double p = w.get('P');
     if (std::fabs(std::round(p) - p) > 0.001)
       failAt(block, w.col('P'), "P value not an integer with M19 G2 or G3");
-    if (std::round(p) < 1)
+    if (arc && std::round(p) < 1)
       failAt(block, w.col('P'), "P value should be 1 or greater with G2 or G3");
   }
   reject('Q',
          motion != 830 && motion != 730 && motion != 50 && !g10 && w.m[kMToolChange] != 610 &&
-             w.g[kGPathMode] != 640 && m_io != 660,
+             w.g[kGPathMode] != 640 && m_io != 660 && !analog_out && !orient,
          "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code that uses "
          "it");
-  reject('R', !arc && !cycle && !g10 && g7 != 411 && g7 != 421,
+  reject('R', !arc && !cycle && !g10 && g7 != 411 && g7 != 421 && !orient,
          "R word with no G code that uses it");
   if (motion == 330 || motion == 331) {
     if (!w.has('K')) failAt(block, 0, "K word missing with g33");
@@ -226,13 +235,20 @@ void BlockExecutor::runModes(Step& st) {
   if (st.w.g[kGRetract] >= 0) st.s.retract_to_r = st.w.g[kGRetract] == 990;
 }
 
-// M62..M65 (digital outputs) and M66 (wait on an input): no motion and no
-// event, only LinuxCNC's checks of their words.
+// M62..M65 (digital outputs), M66 (wait on an input) and M67/M68 (analog
+// outputs): no motion and no event, only LinuxCNC's checks of their words.
 void BlockExecutor::checkIo(Step& st) {
   const BlockWords& w = st.w;
   const int m = w.m[kMIo];
   if (m < 0) return;
   const int column = w.m_column[kMIo];
+  if (m == 670 || m == 680) {  // E: the output (rounded, from 0), Q: its value
+    if (!w.has('E') || std::floor(w.get('E') + 0.5) < 0)
+      st.fail("Invalid analog index with M" + std::to_string(m / 10) +
+                  " (an E word from 0 names the output)",
+              column);
+    return;
+  }
   if (m != 660) {
     if (!w.has('P')) st.fail("No valid P word with M" + std::to_string(m / 10), column);
     return;

@@ -79,10 +79,18 @@ void BlockExecutor::setTool(Step& st) {
 void BlockExecutor::setSpindleAndCoolant(Step& st) {
   InterpState& s = st.s;
   const int sp = st.w.m[kMSpindle];
+  if (sp == 190) {  // M19: LinuxCNC's checks; orienting stops the spindle
+    const BlockWords& w = st.w;
+    if (w.has('P') && (std::round(w.get('P')) < 0 || std::round(w.get('P')) > 2))
+      st.failWord('P', "P value must be 0,1,or 2 with M19");
+    if (w.has('R') && (w.get('R') < 0 || w.get('R') > 360))
+      st.failWord('R', "R value must be within 0..360 with M19");
+    if (w.has('Q') && w.get('Q') <= 0) st.failWord('Q', "Q word with M19 requires a value > 0");
+  }
   if (sp >= 0 || (st.w.has('S') && s.spindle != SpindleState::kOff)) {
     if (sp == 30) s.spindle = SpindleState::kClockwise;
     if (sp == 40) s.spindle = SpindleState::kCounterClockwise;
-    if (sp == 50) s.spindle = SpindleState::kOff;
+    if (sp == 50 || sp == 190) s.spindle = SpindleState::kOff;
     Event e;
     e.type = EventType::kSpindle;
     e.spindle = s.spindle;

@@ -73,10 +73,16 @@ void readBlockWords(const Block& block, unsigned axis_mask, BlockWords& out) {
   out.axis_column = 0;
   out.has_radius = out.has_angle = false;
   out.polar_column = 0;
+  out.spindle_column = 0;
   for (const Word& w : block.words) {
     const char c = w.letter;
-    if (c == '$') {  // spindle select: this machine has one spindle, $0
-      if (w.value != 0.0) failAt(block, w.column, "Invalid spindle ($) number");
+    if (c == '$') {  // spindle select: this machine has one spindle, $0 ($-1: all of them)
+      if (out.spindle_column != 0)
+        failAt(block, w.column, "Multiple spindle choice ($) words on one line");
+      const double number = std::trunc(w.value);  // LinuxCNC drops the fraction
+      if (number != 0.0 && number != -1.0)
+        failAt(block, w.column, "Invalid spindle ($) number: the machine has one spindle, $0");
+      out.spindle_column = w.column;
       continue;
     }
     if (c == '@' || c == '^') {

@@ -25,7 +25,8 @@ struct BlockWords {
   // is no error: the last one counts.
   bool has_radius = false, has_angle = false;
   double radius = 0.0, angle = 0.0;
-  int polar_column = 0;  // column of the first @ or ^, 0: none
+  int polar_column = 0;    // column of the first @ or ^, 0: none
+  int spindle_column = 0;  // column of the $ word (spindle select), 0: none
   bool hasPolar() const { return polar_column != 0; }
 
   bool has(char c) const { return (letters >> (c - 'A')) & 1u; }

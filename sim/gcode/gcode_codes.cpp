@@ -94,6 +94,7 @@ constexpr std::array kMCodes{
     CodeInfo{'M', 70, kMCoolant, false, "mist on"},
     CodeInfo{'M', 80, kMCoolant, false, "flood on"},
     CodeInfo{'M', 90, kMCoolant, false, "coolant off"},
+    CodeInfo{'M', 190, kMSpindle, false, "orient spindle (stops it)"},
     CodeInfo{'M', 300, kMStop, false, "program end and rewind"},
     CodeInfo{'M', 480, kMOverride, false, "enable overrides"},
     CodeInfo{'M', 490, kMOverride, false, "disable overrides"},
@@ -103,12 +104,14 @@ constexpr std::array kMCodes{
     CodeInfo{'M', 530, kMOverride, false, "feed stop control"},
     CodeInfo{'M', 600, kMStop, false, "pallet change pause"},
     CodeInfo{'M', 610, kMToolChange, false, "set current tool"},
-    // Digital outputs and waiting on an input: no motion (a verifier has no I/O).
+    // Digital and analog outputs, waiting on an input: no motion (a verifier has no I/O).
     CodeInfo{'M', 620, kMIo, false, "digital output on, synchronised with motion"},
     CodeInfo{'M', 630, kMIo, false, "digital output off, synchronised with motion"},
     CodeInfo{'M', 640, kMIo, false, "digital output on, immediately"},
     CodeInfo{'M', 650, kMIo, false, "digital output off, immediately"},
     CodeInfo{'M', 660, kMIo, false, "wait on input"},
+    CodeInfo{'M', 670, kMIo, false, "analog output, synchronised with motion"},
+    CodeInfo{'M', 680, kMIo, false, "analog output, immediately"},
 };
 
 template <std::size_t N>

@@ -28,10 +28,10 @@ enum GGroup : int {
 enum MGroup : int {
   kMStop = 0,    // M0 M1 M2 M30 M60
   kMToolChange,  // M6 M61
-  kMSpindle,     // M3 M4 M5
+  kMSpindle,     // M3 M4 M5 M19
   kMCoolant,     // M7 M8 M9 (M7 and M8 may share a line)
   kMOverride,    // M48 .. M53
-  kMIo,          // M62 .. M66 (digital outputs, wait on input)
+  kMIo,          // M62 .. M68 (digital and analog outputs, wait on input)
   kMGroupCount,
 };
 

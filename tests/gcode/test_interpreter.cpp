@@ -114,6 +114,52 @@ TEST(InterpreterErrors, DigitalIoWords) {
   }
 }
 
+// M19 (orient spindle), M67/M68 (analog outputs) and the $ spindle word, as rs274
+// takes them (each line below checked against it; oracle programs 25 and
+// 99_reject_g33_after_m19). mdhd refused M19, M67 and M68 as unknown codes.
+TEST(InterpreterErrors, OrientSpindleAnalogOutputsAndSpindleWord) {
+  expectError("G21\nM67 Q5\n", "Invalid analog index with M67 (an E word from 0 names the output)");
+  expectError("G21\nM68 E-0.6 Q5\n",
+              "Invalid analog index with M68 (an E word from 0 names the output)");
+  expectError("G21\nM67 E0 Q5 P1\n",
+              "P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 "
+              "M63 M64 M65 M66 or user M code to use it");
+  expectError("G21\nM62 P1 M67 E0 Q1\n", "Two M codes used from same modal group");
+  expectError("G21\nM19 P0.5\n", "P value not an integer with M19 G2 or G3");
+  expectError("G21\nM19 P3\n", "P value must be 0,1,or 2 with M19");
+  expectError("G21\nM19 R-10\n", "R value must be within 0..360 with M19");
+  expectError("G21\nM19 R400\n", "R value must be within 0..360 with M19");
+  expectError("G21\nM19 Q0\n", "Q word with M19 requires a value > 0");
+  expectError("G21\nM3 S100 M19\n", "Two M codes used from same modal group");
+  expectError("G21\nM19 E1\n", "E word with no G76, M66, M67 or M68 to use it");
+  // Orienting stops the spindle: G33 then needs M3 again.
+  expectError("G21\nS100 M3\nM19 R10\nG33 Z-1 K1\n", "Spindle not turning in G33", 4);
+  expectError("G21\nM3 S100 $1\n", "Invalid spindle ($) number: the machine has one spindle, $0");
+  expectError("G21\nM3 S100 $-2\n", "Invalid spindle ($) number: the machine has one spindle, $0");
+  expectError("G21\nM3 S100 $-1 $0\n", "Multiple spindle choice ($) words on one line");
+  expectError("G21\nG0 X2 $0\n",
+              "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G96, G97 or S "
+              "word to use it");
+  expectError("G21\nG95 $0\n",
+              "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G96, G97 or S "
+              "word to use it");
+  const Result r = run("S100 M3\nM19 R90 Q2 P1\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  std::vector<SpindleState> spindle;
+  for (const Event& e : r.events)
+    if (e.type == EventType::kSpindle) spindle.push_back(e.spindle);
+  EXPECT_EQ(spindle, (std::vector<SpindleState>{SpindleState::kClockwise, SpindleState::kOff}));
+  EXPECT_EQ(r.state.spindle, SpindleState::kOff);
+  // Accepted ($ drops its fraction, $-1 is every spindle), and nothing moves.
+  for (const char* ok :
+       {"M67 E0 Q5\n", "M67 E0\n", "M68 E2 Q-3\n", "M67 E-0.4 Q5\n", "M67 E0 Q1 G1 X3 F100\n",
+        "M19\n", "M19 P0.0005\n", "M19 R360\n", "M19 G4 P1\n", "M3 S100 $-1\n", "M3 $0.99 S100\n",
+        "M3 $-1.99 S100\n", "S100 $0\n", "M5 $-1\n", "G97 S100 $0\n"}) {
+    const Result ok_run = run(ok);
+    EXPECT_FALSE(ok_run.error) << ok << (ok_run.error ? ok_run.error->what() : "");
+  }
+}
+
 TEST(InterpreterErrors, LeftHandTappingNeedsTheSpindleCounterclockwise) {
   expectError("G21 G0 Z2 F100\nG74 X1 R1 Z-1\n", "Spindle not turning in G74");
   expectError("G21 G0 Z2 F100 S100 M3\nG74 X1 R1 Z-1\n", "Spindle turning clockwise in G74");
