@@ -90,7 +90,7 @@ void BlockExecutor::emitEvent(Step& st, Event e) {
 namespace {
 
 bool usesAxesNonModal(int g0) {
-  return g0 == 100 || g0 == 280 || g0 == 300 || g0 == 920;
+  return g0 == 100 || g0 == 280 || g0 == 300 || g0 == 520 || g0 == 920;
 }
 
 bool isCompOn(int g7) {
@@ -294,6 +294,7 @@ void BlockExecutor::runNonModal(Step& st) {
     case 53:
       nurbsEnd(st);
       break;
+    case 520:
     case 920:
     case 921:
     case 922:

@@ -144,6 +144,15 @@ void BlockExecutor::setG92(Step& st) {
     }
     s.g92_saved = s.g92;
     s.g92_applied = true;
+  } else if (g == 520) {
+    // G52 (LinuxCNC's local offset): the named axes' G92 offsets become the words
+    // (G91 or not); the others keep theirs. The machine stays where it is.
+    if (!st.w.hasAxis()) st.fail("All axes missing with G52", st.w.g_column[kGNonModal]);
+    for (int a = 0; a < kAxisCount; ++a)
+      if (st.w.has(kAxisLetters[a])) s.g92[a] = axisWord(*this, st.w, a, st.unit());
+    s.g92_saved = s.g92;
+    s.g92_applied = true;
+    s.current = toProgram(s, machine);
   } else {
     if (g == 921) s.g92_saved = AxisValues{};
     if (g == 923) {

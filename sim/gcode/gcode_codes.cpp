@@ -41,6 +41,7 @@ constexpr std::array kGCodes{
     CodeInfo{'G', 432, kGToolLength, false, "additional tool length offset"},
     CodeInfo{'G', 434, kGToolLength, false, "tool centre point control"},
     CodeInfo{'G', 490, kGToolLength, false, "cancel tool length offset"},
+    CodeInfo{'G', 520, kGNonModal, true, "local coordinate system offset"},
     CodeInfo{'G', 530, kGNonModal, false, "machine coordinates"},
     CodeInfo{'G', 540, kGCoordSystem, false, "work offset 1"},
     CodeInfo{'G', 550, kGCoordSystem, false, "work offset 2"},

@@ -8,7 +8,7 @@ namespace mdhd::gcode {
 
 // G code modal groups (index into BlockWords::g).
 enum GGroup : int {
-  kGNonModal = 0,      // G4 G5.3 G10 G28 G28.1 G30 G30.1 G53 G92 G92.1 G92.2 G92.3
+  kGNonModal = 0,      // G4 G5.3 G10 G28 G28.1 G30 G30.1 G52 G53 G92 G92.1 G92.2 G92.3
   kGMotion = 1,        // G0 G1 G2 G3 G5 G5.1 G5.2 G33 G33.1 G38.x G73 G74 G80 G81..G89
   kGPlane = 2,         // G17 G18 G19
   kGDistance = 3,      // G90 G91

@@ -160,6 +160,23 @@ TEST(InterpreterErrors, OrientSpindleAnalogOutputsAndSpindleWord) {
   }
 }
 
+// G52 (LinuxCNC's local offset; mdhd refused it as an unknown code): the named axes'
+// G92 offsets become the words, kept in #5211.. like G92's (oracle program 26).
+TEST(Interpreter, G52SetsTheG92OffsetsOfTheNamedAxes) {
+  const Result r = run("G0 X5 Y5 Z5\nG52 X10 Y20\nG0 X0\nG52 Z3\nG91 G52 X1\nG90 G0 X0 Y0 Z0\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  ASSERT_EQ(r.motions.size(), 3u);
+  expectEnd(r.motions[1], 10.0, 5.0, 5.0);  // Y and Z left out: the machine stays there
+  expectEnd(r.motions[2], 1.0, 20.0, 3.0);  // G91 does not make G52 incremental
+  EXPECT_EQ(r.param(5210), 1.0);
+  EXPECT_EQ(r.param(5211), 1.0);
+  EXPECT_EQ(r.param(5212), 20.0);
+  EXPECT_EQ(r.param(5213), 3.0);
+  expectError("G21\nG52\n", "All axes missing with G52");
+  expectError("G21\nG52 X1 G0 Y3\n", "Cannot use two G codes that both use axis values");
+  expectError("G21\nG52 G92 X1\n", "Two G codes used from same modal group");
+}
+
 TEST(InterpreterErrors, LeftHandTappingNeedsTheSpindleCounterclockwise) {
   expectError("G21 G0 Z2 F100\nG74 X1 R1 Z-1\n", "Spindle not turning in G74");
   expectError("G21 G0 Z2 F100 S100 M3\nG74 X1 R1 Z-1\n", "Spindle turning clockwise in G74");
