@@ -31,10 +31,60 @@ int axisIndex(char c) {
   return -1;
 }
 
+// Codes LinuxCNC 2.9 knows and mdhd does not run: refused with their name, so
+// that a machinist does not look for a typing error.
+const char* unsupportedCode(char letter, int c) {
+  if (letter == 'G') {
+    switch (c) {
+      case 70:
+      case 80:
+        return "lathe diameter/radius mode";
+      case 171:
+      case 181:
+      case 191:
+        return "UVW plane selection";
+      case 700:
+      case 710:
+      case 711:
+      case 712:
+      case 720:
+      case 721:
+      case 722:
+        return "lathe roughing/finishing cycle";
+      case 760:
+        return "threading cycle";
+      default:
+        return nullptr;
+    }
+  }
+  switch (c) {
+    case 700:
+    case 710:
+    case 720:
+    case 730:
+      return "modal state save/restore";
+    case 980:
+    case 990:
+      return "Fanuc-style subprogram call/return; use O-word sub/call";
+    default:
+      return nullptr;
+  }
+}
+
+[[noreturn]] void failUnknown(const Block& block, const Word& w, int c) {
+  const char letter = w.letter;
+  if (const char* what = c < 0 ? nullptr : unsupportedCode(letter, c)) {
+    std::string code = std::string(1, letter) + std::to_string(c / 10);
+    if (c % 10 != 0) code += "." + std::to_string(c % 10);
+    failAt(block, w.column, code + " (" + what + ") is not supported");
+  }
+  failAt(block, w.column, letter == 'G' ? "Unknown g code used" : "Unknown m code used");
+}
+
 void addG(const Block& block, const Word& w, BlockWords& out) {
   const int c = code10(w.value);
   const CodeInfo* info = c < 0 ? nullptr : findGCode(c);
-  if (!info) failAt(block, w.column, "Unknown g code used");
+  if (!info) failUnknown(block, w, c);
   int& slot = out.g[info->group];
   if (info->group == kGMotion && slot != -1 && (slot == 800 || c == 800)) {
     // LinuxCNC: G80 beside another motion code is ignored (in either order).
@@ -49,7 +99,7 @@ void addG(const Block& block, const Word& w, BlockWords& out) {
 void addM(const Block& block, const Word& w, BlockWords& out) {
   const int c = code10(w.value);
   const CodeInfo* info = c < 0 ? nullptr : findMCode(c);
-  if (!info) failAt(block, w.column, "Unknown m code used");
+  if (!info) failUnknown(block, w, c);
   int& slot = out.m[info->group];
   if (slot != -1) {
     const bool pair =

@@ -62,6 +62,25 @@ TEST(InterpreterErrors, UnknownCodesAndMissingAxes) {
   r = run("M123\n");
   ASSERT_TRUE(r.error);
   EXPECT_STREQ(r.error->what(), "Unknown m code used");
+  // Codes LinuxCNC runs and mdhd does not: named, at their column (they were
+  // "Unknown g code used", which sends a machinist looking for a typing error).
+  const std::pair<const char*, const char*> unsupported[] = {
+      {"G0 X1 G7\n", "G7 (lathe diameter/radius mode) is not supported"},
+      {"G0 X1 G18.1\n", "G18.1 (UVW plane selection) is not supported"},
+      {"G0 X1 G71.2\n", "G71.2 (lathe roughing/finishing cycle) is not supported"},
+      {"G0 X1 G76\n", "G76 (threading cycle) is not supported"},
+      {"G0 X1 M73\n", "M73 (modal state save/restore) is not supported"},
+      {"G0 X1 M98\n",
+       "M98 (Fanuc-style subprogram call/return; use O-word sub/call) is not supported"}};
+  for (const auto& [program, message] : unsupported) {
+    r = run(program);
+    ASSERT_TRUE(r.error) << program;
+    EXPECT_STREQ(r.error->what(), message);
+    EXPECT_EQ(r.error->column(), 7) << program;
+  }
+  r = run("G7.5\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_STREQ(r.error->what(), "Unknown g code used");
   r = run("G0 X1 W5\n");
   ASSERT_TRUE(r.error);
   EXPECT_STREQ(r.error->what(),
