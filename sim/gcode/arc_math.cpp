@@ -42,7 +42,9 @@ std::string arcFromCenter(bool ccw, double s1, double s2, double e1, double e2, 
   if (r1 < tol.radius_min || r2 < tol.radius_min) return describe("Zero-radius arc");
   const double abs_err = std::fabs(r1 - r2);
   const double rel_err = abs_err / std::max(r1, r2);
-  if (abs_err > tol.spiral_abs || rel_err > tol.spiral_rel) {
+  // LinuxCNC: an end off the radius by up to the tolerance is fine; beyond it, only
+  // by up to 0.1 % of the radius, and never by 100 times the tolerance.
+  if (abs_err > 100.0 * tol.spiral_abs || (rel_err > tol.spiral_rel && abs_err > tol.spiral_abs)) {
     std::string msg = describe("Radius to end of arc differs from radius to start");
     std::snprintf(text, sizeof text, " abs_err=%.4g rel_err=%.4f%%", abs_err / unit, rel_err * 100);
     return msg + text;

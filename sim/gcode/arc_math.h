@@ -13,8 +13,8 @@ struct ArcFit {
 // Tolerances of the radius checks, mm (they depend on the program's units).
 struct ArcTolerance {
   double radius_min;  // smaller radius: a zero-radius arc
-  double spiral_abs;  // allowed |r_end - r_start|
-  double spiral_rel;  // ... relative to the larger radius
+  double spiral_abs;  // |r_end - r_start| always allowed (100 times it never)
+  double spiral_rel;  // beyond spiral_abs, allowed relative to the larger radius
   double r_format;    // R arcs: allowed shortfall of the radius
 };
 ArcTolerance arcTolerance(bool inch);
