@@ -10,6 +10,10 @@ using nlohmann::json;
 // Rounded to a nanometre (or nano-degree): reports compare across runs, not bits.
 double clean(double v) {
   if (!std::isfinite(v)) return 0.0;
+  // From 1e15 on a double holds no fraction finer than a nanometre anyway, and beyond
+  // ~1.8e299 v * 1e9 overflows: a move to X 1e300 reported its overtravel as
+  // "depth": null until session 23.
+  if (std::abs(v) >= 1e15) return v;
   const double r = std::round(v * 1e9) / 1e9;
   return r == 0.0 ? 0.0 : r;
 }

@@ -105,6 +105,39 @@ TEST(ReportJson, WithoutAMachineJointsAreByLetter) {
   EXPECT_EQ(doc["collisions"][0]["joints"], json({{"X", 12.0}, {"Y", 0.0}, {"Z", 0.0}}));
 }
 
+// Every number is written as the finite number it is, however large: rounding to a
+// nanometre multiplied by 1e9 first, which overflowed beyond ~1.8e299 and wrote null
+// (a program's G0 X999...9 with 300 digits reported its overtravel's depth as null).
+TEST(ReportJson, HugeFiniteNumbersStayNumbers) {
+  check::Report r = withCollision();
+  check::Collision& c = r.collisions[0];
+  c.type = check::CollisionType::kAxisLimit;
+  c.part = check::ToolPartName::kNone;
+  c.fixture = -1;
+  c.axis = "X";
+  c.depth = 1e300;
+  c.position = {-1e300, 2.5e299, 1e16};
+  c.joints[gcode::kX] = 1e300;
+  r.stats.path_length = 1.7e308;
+  r.stats.cycle_time_s = 4e297;
+  const json doc = reportToJson(r, nullptr);
+  expectValid(doc);
+  const json& e = doc["collisions"][0];
+  EXPECT_EQ(e["depth"], 1e300);
+  EXPECT_EQ(e["position"], json::array({-1e300, 2.5e299, 1e16}));
+  EXPECT_EQ(e["joints"]["X"], 1e300);
+  EXPECT_EQ(doc["stats"]["path_length"], 1.7e308);
+  EXPECT_EQ(doc["stats"]["cycle_time_s"], 4e297);
+  const std::string text = doc.dump();
+  std::size_t nulls = 0;
+  for (auto at = text.find("null"); at != std::string::npos; at = text.find("null", at + 1))
+    ++nulls;
+  EXPECT_EQ(nulls, 1u);  // "error": null, nothing else
+  // Below 1e15 still rounded to a nanometre.
+  r.collisions[0].depth = 0.1 + 0.2;
+  EXPECT_EQ(reportToJson(r, nullptr)["collisions"][0]["depth"], 0.3);
+}
+
 TEST(ReportJson, SchemaRejectsAReportMissingABlock) {
   json doc = reportToJson(withCollision(), nullptr);
   doc.erase("overhang");
