@@ -1,5 +1,5 @@
 #pragma once
-// Collision episodes: a contact of one kind (type, tool part, fixture, joint)
+// Collision episodes: a contact of one kind (type, tool part, fixture, joint, tool)
 // starts at the first step that touches and ends at the first step that does
 // not; the report holds one entry per episode with its first place and its
 // deepest penetration.
@@ -17,6 +17,11 @@ struct EpisodeKey {
   ToolPartName part = ToolPartName::kNone;
   int fixture = -1;
   int joint = -1;
+  // The tool of a contact: a tool change ends every contact of the tool before it (a
+  // rapid or holder contact of tool 2 right after one of tool 1 was reported as tool
+  // 1's, at its line, until session 23). Axis limits keep 0: a joint's overtravel is
+  // the machine's, whichever tool is in the spindle.
+  int tool = 0;
   auto operator<=>(const EpisodeKey&) const = default;
 };
 

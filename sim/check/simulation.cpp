@@ -207,6 +207,15 @@ void Simulation::checkCancel() const {
 void Simulation::motion(const gcode::Motion& m) {
   if (const std::string& blind = blindReason(m.tool); !blind.empty())
     throw gcode::GcodeError(m.pos, blind);
+  if (m.spindle != gcode::SpindleState::kOff && !(m.spindle_rpm > 0.0)) {
+    // M3/M4 at S0, or with no S ever given: the spindle stands still, and a cut is a cut
+    // with the spindle off (it ran `clean` until session 23). A live machine's motions
+    // (machineMotion) carry no speed and keep the state they report.
+    gcode::Motion still = m;
+    still.spindle = gcode::SpindleState::kOff;
+    simulate(still, nullptr);
+    return;
+  }
   simulate(m, nullptr);
 }
 
@@ -246,7 +255,10 @@ void Simulation::simulate(const gcode::Motion& m, const double* known_seconds) {
     }
     bool removed = false;
     for (std::size_t i = 1; i < poses.size(); ++i) {
-      stats_.path_length += glm::length(poses[i].pose.tip - poses[i - 1].pose.tip);
+      const glm::dvec3 d = poses[i].pose.tip - poses[i - 1].pose.tip;
+      const double chord = glm::length(d);
+      // Beyond ~1e154 mm the squares overflow: the path was infinite, reported as 0.
+      stats_.path_length += std::isfinite(chord) ? chord : std::hypot(d.x, d.y, d.z);
       runStep(m, path, parts, poses[i - 1], poses[i], removed);
     }
     const double seconds =
@@ -461,7 +473,7 @@ void Simulation::cutterStep(const Step& step, bool& removed) {
       };
       const geom::Aabb all{glm::dvec3(-INFINITY), glm::dvec3(INFINITY)};
       const EpisodeKey key{rapid ? CollisionType::kRapidIntoStock : CollisionType::kSpindleOffCut,
-                           ToolPartName::kCutter, -1, -1};
+                           ToolPartName::kCutter, -1, -1, m.tool};
       if (measureCanWait(key, step, step.parts.cutter)) {
         episodes_.touch(key, 0.0, m.pos.line, [] { return Collision{}; });
       } else {
@@ -606,7 +618,7 @@ void Simulation::stockContacts(const Step& step) {
       overlap = stock_->probe(*check.sweep, contact_tolerance_);
       if (!overlap.touched) continue;
     }
-    const EpisodeKey key{check.type, check.name, -1, -1};
+    const EpisodeKey key{check.type, check.name, -1, -1, step.m.tool};
     if (measureCanWait(key, step, check.part)) {
       episodes_.touch(key, 0.0, step.m.pos.line, [] { return Collision{}; });
       continue;
@@ -647,7 +659,8 @@ void Simulation::fixtureContacts(const Step& step) {
       if (part.sweep == nullptr || part.part.empty() ||
           isEmpty(intersect(part.sweep->bounds(), fb)))
         continue;
-      const EpisodeKey key{CollisionType::kFixtureContact, part.name, static_cast<int>(i), -1};
+      const EpisodeKey key{CollisionType::kFixtureContact, part.name, static_cast<int>(i), -1,
+                           step.m.tool};
       // As for the stock, while the part still overlaps the fixture.
       if (measureCanWait(key, step, part.part) &&
           penetration(*part.sweep, part.part, fb, lines, material, false).max_overlap >

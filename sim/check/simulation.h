@@ -93,7 +93,7 @@ class Simulation final : public gcode::MotionSink {
   // Throws gcode::GcodeError at the motion's place when it cannot be simulated (a
   // singular tool-centre-point pose, a half-turn of the tool axis within one fixed
   // step, a tool too thin for any of its contacts to be told: blindReason), Cancelled
-  // when cancelled.
+  // when cancelled. A spindle turned on at 0 rpm (M3 S0, or no S ever) counts as off.
   void motion(const gcode::Motion& m) override;
   void event(const gcode::Event& e) override;
 

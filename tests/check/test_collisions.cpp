@@ -70,6 +70,96 @@ TEST(Collisions, CutWithTheSpindleOff) {
   EXPECT_GT(r.stats.removed_volume_mm3, 0.0);
 }
 
+// M3 or M4 at S0 turns nothing: a cut then is a cut with the spindle off. Until session
+// 23 only M5 (or no M3) counted, and both cuts below ran `clean`.
+TEST(Collisions, CutWithTheSpindleOnAtZeroSpeed) {
+  Rig s;
+  s.options.density = 5;
+  const Report r = run(std::move(s), std::string(kStart) +
+                                         "M3 S0\n"          // 4: on, at 0 rpm
+                                         "G0 X20 Y20 Z5\n"  // 5
+                                         "G1 Z-2 F200\n"    // 6: into the stock, standing still
+                                         "S9000\n"          // 7
+                                         "G1 X30\n"         // 8: turning: a clean cut
+                                         "S0\n"             // 9
+                                         "G1 Y30\n"         // 10: standing still again
+                                         "G0 Z5\nM30\n");
+  const auto off = ofType(r, CollisionType::kSpindleOffCut);
+  ASSERT_EQ(off.size(), 2u);
+  EXPECT_EQ(off[0]->line, 6);
+  EXPECT_EQ(off[0]->last_line, 6);
+  EXPECT_NEAR(off[0]->depth, 2.0, 0.2);
+  EXPECT_EQ(off[1]->line, 10);
+  EXPECT_NEAR(off[1]->position.y, 20.0, 0.15);  // at once: the cutter starts in the slot's end
+  EXPECT_EQ(r.collisions.size(), 2u);
+  // The removal happens all the same, 2 mm deep: the hole and a 10 mm slot along x (a
+  // disc and 10 x 6 mm), then 10 mm along y from the slot's end (10 x 6 mm and a half
+  // disc, less the 3 x 3 mm and the quarter disc the first slot had taken).
+  const double removed = 2 * (pi * 9 + 60 + 60 + pi * 9 / 2 - 9 - pi * 9 / 4);
+  EXPECT_NEAR(r.stats.removed_volume_mm3, removed, 0.02 * removed);
+}
+
+// A tool change ends the contacts of the tool before it: the next tool's contact is
+// its own episode with its own tool, line and depth, even when the two touch in
+// consecutive moves (M6 moves nothing). Until session 23 the key of an episode did not
+// hold the tool: tool 2's rapid at line 10 (1 mm deeper into tool 1's hole) and its
+// holder dragged at line 10 were reported as tool 1's episodes from line 6 to 10.
+TEST(Collisions, AToolChangeEndsTheEpisodesOfTheToolBefore) {
+  const auto twoTools = [] {
+    Rig s;
+    s.options.density = 5;
+    s.tools = {flatTool(1), flatTool(2)};
+    return s;
+  };
+  const std::string change =
+      "T2 M6\n"      // 7
+      "G43 H2\n"     // 8
+      "M3 S9000\n";  // 9
+  {
+    const Report r = run(twoTools(), std::string(kStart) +
+                                         "M3 S9000\n"       // 4
+                                         "G0 X20 Y20 Z5\n"  // 5
+                                         "G0 Z-2\n" +       // 6: tool 1, 2 mm in
+                                         change +           // 7-9
+                                         "G0 Z-3\n"         // 10: tool 2, 1 mm deeper
+                                         "G0 Z5\nM30\n");
+    const auto rapid = ofType(r, CollisionType::kRapidIntoStock);
+    ASSERT_EQ(rapid.size(), 2u);
+    EXPECT_EQ(rapid[0]->tool, 1);
+    EXPECT_EQ(rapid[0]->line, 6);
+    EXPECT_EQ(rapid[0]->last_line, 6);
+    EXPECT_NEAR(rapid[0]->depth, 2.0, 0.2);
+    EXPECT_EQ(rapid[1]->tool, 2);
+    EXPECT_EQ(rapid[1]->line, 10);
+    EXPECT_EQ(rapid[1]->last_line, 10);
+    EXPECT_NEAR(rapid[1]->depth, 1.0, 0.2);
+    EXPECT_NEAR(rapid[1]->position.z, -2.0, 0.15);  // where tool 2 leaves the hole's floor
+    EXPECT_EQ(r.collisions.size(), 2u);
+  }
+  {
+    // The holder (30-40 mm above the tip) 1 mm into the stock top, then tool 2's 1.5 mm
+    // (the cutter below the stock, the shank in its own hole).
+    const Report r = run(twoTools(), std::string(kStart) +
+                                         "M3 S9000\n"        // 4
+                                         "G0 X20 Y20 Z5\n"   // 5
+                                         "G1 Z-31 F200\n" +  // 6: tool 1's holder 1 mm in
+                                         change +            // 7-9
+                                         "G1 Z-31.5 F200\n"  // 10: tool 2's holder
+                                         "G0 Z5\nM30\n");
+    const auto holder = ofType(r, CollisionType::kHolderContact);
+    ASSERT_EQ(holder.size(), 2u);
+    EXPECT_EQ(holder[0]->tool, 1);
+    EXPECT_EQ(holder[0]->line, 6);
+    EXPECT_EQ(holder[0]->last_line, 6);
+    EXPECT_NEAR(holder[0]->depth, 1.0, 0.2);
+    EXPECT_EQ(holder[1]->tool, 2);
+    EXPECT_EQ(holder[1]->line, 10);
+    EXPECT_EQ(holder[1]->last_line, 11);  // the retract leaves the stock
+    EXPECT_NEAR(holder[1]->depth, 1.5, 0.2);
+    EXPECT_EQ(r.collisions.size(), 2u);
+  }
+}
+
 TEST(Collisions, ShankInTheWallButNotInItsOwnHole) {
   Rig s;
   s.options.density = 5;
@@ -305,6 +395,23 @@ TEST(Collisions, AxisLimitEpisodesAndHowFarBeyond) {
   EXPECT_EQ(lim[1]->line, 8);
   EXPECT_NEAR(lim[1]->depth, 10.0, 1e-9);
   EXPECT_EQ(r.collisions.size(), 2u);
+}
+
+// A move to X 1e300 (300 digits) is an overtravel of about 1e300 mm on a path about as
+// long: the tip's chord was measured through its squares, which overflow beyond ~1e154,
+// and the path length was infinite (0 in the report) until session 23.
+TEST(Collisions, AMoveFarBeyondTheLimitsHasAFinitePathAndDepth) {
+  Rig s;
+  s.options.density = 2;
+  const Report r =
+      run(std::move(s), "G21 G90\nT1 M6\nG43 H1\nG0 X" + std::string(300, '9') + "\nM30\n");  // 4
+  const auto lim = ofType(r, CollisionType::kAxisLimit);
+  ASSERT_EQ(lim.size(), 1u);
+  EXPECT_EQ(lim[0]->line, 4);
+  EXPECT_EQ(lim[0]->axis, "X");
+  EXPECT_NEAR(lim[0]->depth / 1e300, 1.0, 1e-9);
+  EXPECT_TRUE(std::isfinite(r.stats.path_length));
+  EXPECT_NEAR(r.stats.path_length / 1e300, 1.0, 1e-9);
 }
 
 // Each joint beyond its range is its own episode, also when another joint left first
