@@ -40,7 +40,7 @@ std::string_view keywordName(OKeyword keyword) {
   for (const KeywordName& k : kKeywords) {
     if (k.keyword == keyword) return k.text;
   }
-  return "?";
+  return "";
 }
 
 bool startsWithOWord(Cursor& c) {
@@ -66,6 +66,10 @@ OWordHead readOWordHead(Cursor& c, ExpressionReader& expressions) {
     head.label = std::to_string(expressions.readIntegerValue(c));
   }
   const std::string_view after = c.rest();
+  if (after.empty() || after.front() == '(') {
+    head.keyword = OKeyword::kProgramNumber;
+    return head;
+  }
   for (const KeywordName& k : kKeywords) {
     if (after.substr(0, k.text.size()) == k.text) {
       head.keyword = k.keyword;

@@ -26,7 +26,8 @@ enum class OKeyword {
   kBreak,
   kContinue,
   kRepeat,
-  kEndRepeat
+  kEndRepeat,
+  kProgramNumber  // a bare `O1000` line: a Fanuc-style program number (LinuxCNC 2.9)
 };
 
 struct OWordHead {

@@ -54,6 +54,17 @@ void Reader::handleOWord(Cursor& c) {
       readTrailingComments(c);
       handleBreakOrContinue(head);
       return;
+    case OKeyword::kProgramNumber:
+      // `O1000` alone: LinuxCNC 2.9 runs on into it as a Fanuc-style program; inside
+      // an O-word subroutine it is an error (such programs are only for M98).
+      readTrailingComments(c);
+      if (frames_.size() > 1) {
+        c.failAt(head.index, "Fanuc-style program number " + labelText(head.label) +
+                                 " inside subroutine " + labelText(frames_.back().name) +
+                                 " (LinuxCNC runs 'O....' subprograms only by M98, which mdhd "
+                                 "does not support)");
+      }
+      return;
   }
 }
 
@@ -464,6 +475,10 @@ OKeyword Reader::skipTo(const std::string& label, std::initializer_list<OKeyword
     if (in_definition && head.keyword == OKeyword::kSub) {
       c.failAt(at, "Nested subroutine definition: " + labelText(head.label) + " sub inside " +
                        labelText(label) + " sub");
+    }
+    if (in_definition && head.keyword == OKeyword::kProgramNumber) {
+      c.failAt(at, "Nested subroutine definition: Fanuc-style program number " +
+                       labelText(head.label) + " inside " + labelText(label) + " sub");
     }
     if (head.label != label) continue;
     for (OKeyword stop : stops) {

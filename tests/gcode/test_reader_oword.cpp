@@ -264,7 +264,7 @@ TEST(OWord, Errors) {
       {"o1 sub\no2 endsub\no1 endsub\no1 call\n", "o<2> endsub inside subroutine o<1>", 2, 1},
       {"o1 sub\nG0\n o1 call\n", "o<1> sub has no matching endsub", 1, 1},
       {"o1 foo [1]\n", "Unknown command in O line", 1, 4},
-      {"o1\n", "Unknown command in O line", 1, 3},
+      {"o1 x5\n", "Unknown command in O line", 1, 4},  // a bare o1 is a program number
       {"o call\n", "Unknown word where unary operation could be", 1, 3},
       {"o1.5 call\n", "Non-integer value for integer", 1, 2},
       {"o<abc call\n", "Named parameter not terminated", 1, 2},

@@ -106,3 +106,53 @@ TEST(OWordLabels, ASecondDoOfALabelLoopsBackToTheFirst) {
 
 }  // namespace
 }  // namespace mdhd::gcode
+
+namespace mdhd::gcode {
+namespace {
+
+using testing::memoryLoader;
+using testing::readAll;
+using testing::readError;
+using testing::values;
+
+// A bare `O1000` line (Fanuc-style program number, as Mastercam-like posts start a
+// program): LinuxCNC 2.9 runs on into it; mdhd refused it ("Unknown command in O
+// line"). Oracle program 27 holds rs274's trace of a whole such program.
+TEST(OWordProgramNumber, ABareOWordLineIsRunThrough) {
+  const auto blocks = readAll(
+      "%\n"
+      "O1000 (program name)\n"
+      "G0 X1\n"
+      "N10 O0002\n"
+      "o<named> ; comment\n"
+      "G0 X2\n"
+      "O1000 sub\n"
+      "G0 X7\n"
+      "O1000 endsub\n"
+      "O1000 call\n"
+      "%\n");
+  EXPECT_EQ(values(blocks, 'X'), (std::vector<double>{1.0, 2.0, 7.0}));
+  EXPECT_EQ(blocks[1].pos.line, 6);
+}
+
+TEST(OWordProgramNumber, WordsAfterItOrInsideASubroutineAreErrors) {
+  GcodeError e = readError("G0 X0\nO1000 G0 X5\n");
+  EXPECT_EQ(e.line(), 2);
+  EXPECT_EQ(e.column(), 7);
+  EXPECT_STREQ(e.what(), "Unknown command in O line");
+  // rs274: "Nested subroutine definition" at the program number's line.
+  e = readError("o100 sub\n  O1000\no100 endsub\no100 call\n");
+  EXPECT_EQ(e.line(), 2);
+  EXPECT_EQ(e.column(), 3);
+  EXPECT_NE(std::string(e.what()).find("Nested subroutine definition"), std::string::npos)
+      << e.what();
+  // rs274: "Fanuc 'O....' subroutine must be called with 'M98'" in the sub's file.
+  e = readError("G0 X0\no<ex> call\n", {},
+                memoryLoader({{"ex", "o<ex> sub\nG0 X3\nO1000\no<ex> endsub\n"}}));
+  EXPECT_EQ(e.pos().file, "ex.ngc");
+  EXPECT_EQ(e.line(), 3);
+  EXPECT_NE(std::string(e.what()).find("only by M98"), std::string::npos) << e.what();
+}
+
+}  // namespace
+}  // namespace mdhd::gcode
