@@ -10,6 +10,10 @@
 
 #include <cerrno>
 #include <cstring>
+#include <mutex>
+#include <optional>
+#include <system_error>
+#include <thread>
 
 #include <modbus/modbus.h>
 
@@ -55,7 +59,69 @@ void putBe16(std::vector<std::uint8_t>& out, unsigned v) {
   out.push_back(static_cast<std::uint8_t>(v & 0xFF));
 }
 
+std::string millis(int ms) {
+  return std::to_string(ms) + " ms";
+}
+
+// Copies getaddrinfo's list and frees it.
+std::vector<Endpoint> takeEndpoints(addrinfo* found) {
+  std::vector<Endpoint> out;
+  for (addrinfo* a = found; a != nullptr; a = a->ai_next) {
+    if (a->ai_addrlen > sizeof(sockaddr_storage)) continue;
+    Endpoint e;
+    e.family = a->ai_family;
+    e.length = a->ai_addrlen;
+    std::memcpy(&e.address, a->ai_addr, a->ai_addrlen);
+    out.push_back(e);
+  }
+  freeaddrinfo(found);
+  return out;
+}
+
+// The addresses of a numeric host (never asks a resolver); nullopt for a name.
+std::optional<std::vector<Endpoint>> numericHost(const std::string& host, int port) {
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_NUMERICHOST | AI_NUMERICSERV;
+  addrinfo* found = nullptr;
+  if (getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found) != 0)
+    return std::nullopt;
+  return takeEndpoints(found);
+}
+
 }  // namespace
+
+// A host name being resolved on its own thread. The client and the thread share
+// it: a client destroyed meanwhile leaves the thread to finish alone.
+struct ModbusTcpClient::Lookup {
+  std::mutex mutex;
+  bool done = false;
+  std::vector<Endpoint> found;
+  std::string error;  // the resolver's message, when it failed
+  int done_fd = -1;   // eventfd, written when done
+  Lookup() : done_fd(eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK)) {}
+  ~Lookup() {
+    if (done_fd >= 0) close(done_fd);
+  }
+  Lookup(const Lookup&) = delete;
+  Lookup& operator=(const Lookup&) = delete;
+};
+
+std::vector<Endpoint> resolveHost(const std::string& host, int port) {
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_NUMERICSERV;
+  addrinfo* found = nullptr;
+  if (const int rc = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found);
+      rc != 0) {
+    throw std::runtime_error(rc == EAI_SYSTEM ? std::strerror(errno) : gai_strerror(rc));
+  }
+  std::vector<Endpoint> out = takeEndpoints(found);
+  if (out.empty()) throw std::runtime_error("no address");
+  return out;
+}
 
 const char* modbusErrorKindName(ModbusError::Kind kind) {
   switch (kind) {
@@ -79,11 +145,13 @@ const char* modbusErrorKindName(ModbusError::Kind kind) {
   return "?";
 }
 
-ModbusTcpClient::ModbusTcpClient(ModbusMap map, BackoffPolicy backoff, Clock clock)
+ModbusTcpClient::ModbusTcpClient(ModbusMap map, BackoffPolicy backoff, Clock clock,
+                                 Resolver resolver)
     : map_(std::move(map)),
       blocks_(planReads(map_)),
       policy_(backoff),
       clock_(clock ? std::move(clock) : Clock([] { return SteadyClock::now(); })),
+      resolver_(resolver ? std::move(resolver) : Resolver(resolveHost)),
       next_wait_(policy_.initial) {
   for (const ReadBlock& b : blocks_) words_.emplace_back(static_cast<std::size_t>(b.count));
   wake_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
@@ -153,40 +221,82 @@ void ModbusTcpClient::waitFor(short events, const std::string& what, Deadline de
   }
 }
 
+std::vector<Endpoint> ModbusTcpClient::resolve(Deadline deadline) {
+  const std::string what = "connect";
+  if (auto numeric = numericHost(map_.host, map_.port)) return std::move(*numeric);
+  if (!lookup_) {
+    // A name: resolved on a thread of its own, which the client never joins (the
+    // system's resolver may take as long as it likes; the thread ends with it).
+    auto lookup = std::make_shared<Lookup>();
+    if (lookup->done_fd < 0)
+      fail(Kind::kConnect, errno, what, "eventfd: " + std::string(std::strerror(errno)));
+    try {
+      std::thread([lookup, resolver = resolver_, host = map_.host, port = map_.port] {
+        std::vector<Endpoint> found;
+        std::string error;
+        try {
+          found = resolver(host, port);
+          if (found.empty()) error = "no address";
+        } catch (const std::exception& e) {
+          error = e.what();
+        }
+        std::lock_guard lock(lookup->mutex);
+        lookup->found = std::move(found);
+        lookup->error = std::move(error);
+        lookup->done = true;
+        const std::uint64_t one = 1;
+        (void)!write(lookup->done_fd, &one, sizeof one);
+      }).detach();
+    } catch (const std::system_error& e) {
+      fail(Kind::kConnect, e.code().value(), what,
+           std::string("cannot start resolving the host name: ") + e.what());
+    }
+    lookup_ = std::move(lookup);
+  }
+  for (;;) {
+    {
+      std::lock_guard lock(lookup_->mutex);
+      if (lookup_->done) {
+        const std::shared_ptr<Lookup> done = std::move(lookup_);  // the next attempt asks again
+        if (!done->error.empty())
+          fail(Kind::kConnect, EINVAL, what, "cannot resolve the host: " + done->error);
+        return done->found;
+      }
+    }
+    if (interrupted_.load()) fail(Kind::kInterrupted, ECANCELED, what, "interrupted");
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - SteadyClock::now());
+    if (left.count() <= 0) {
+      fail(Kind::kTimeout, ETIMEDOUT, what,
+           "the host name " + map_.host + " did not resolve within " + millis(map_.timeout_ms) +
+               " (the lookup goes on; a later attempt takes its answer)");
+    }
+    pollfd p[2] = {{lookup_->done_fd, POLLIN, 0}, {wake_fd_, POLLIN, 0}};
+    const int n = poll(p, wake_fd_ >= 0 ? 2 : 1, static_cast<int>(left.count()));
+    if (n < 0 && errno != EINTR) fail(classifyErrno(errno), errno, what, std::strerror(errno));
+  }
+}
+
 void ModbusTcpClient::connectTo(Deadline deadline) {
   const std::string what = "connect";
-  addrinfo hints{};
-  hints.ai_family = AF_UNSPEC;
-  hints.ai_socktype = SOCK_STREAM;
-  addrinfo* found = nullptr;
-  const std::string port = std::to_string(map_.port);
-  if (const int rc = getaddrinfo(map_.host.c_str(), port.c_str(), &hints, &found); rc != 0) {
-    fail(Kind::kConnect, EINVAL, what, std::string("cannot resolve the host: ") + gai_strerror(rc));
-  }
+  const std::vector<Endpoint> found = resolve(deadline);
   int error = ECONNREFUSED;
-  for (addrinfo* a = found; a != nullptr; a = a->ai_next) {
-    fd_ = socket(a->ai_family, a->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, a->ai_protocol);
+  for (const Endpoint& a : found) {
+    fd_ = socket(a.family, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
     if (fd_ < 0) {
       error = errno;
       continue;
     }
-    if (::connect(fd_, a->ai_addr, a->ai_addrlen) == 0) break;
+    if (::connect(fd_, reinterpret_cast<const sockaddr*>(&a.address), a.length) == 0) break;
     if (errno != EINPROGRESS) {
       error = errno;
       disconnect();
       continue;
     }
-    try {
-      waitFor(POLLOUT, what, deadline);
-    } catch (...) {
-      freeaddrinfo(found);
-      throw;
-    }
+    waitFor(POLLOUT, what, deadline);
     socklen_t len = sizeof error;
     if (getsockopt(fd_, SOL_SOCKET, SO_ERROR, &error, &len) == 0 && error == 0) break;
     disconnect();
   }
-  freeaddrinfo(found);
   if (fd_ < 0) fail(classifyErrno(error), error, what, std::strerror(error));
   const int one = 1;
   setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);

@@ -4,10 +4,12 @@
 // names the errors).
 //
 // Failures are ModbusError, never a crash, a hang beyond timeout_ms or a SIGPIPE.
-// timeout_ms bounds a whole call (read(): connecting when needed and every read of
-// the poll; writeFeedHold(): connecting and the write), however the peer paces its
-// bytes; only resolving a host name is outside it (an address or "localhost" is
-// immediate). Every reply is checked: transaction id, protocol id 0, an MBAP
+// timeout_ms bounds a whole call (read(): resolving the host name and connecting
+// when needed, and every read of the poll; writeFeedHold(): the same and the
+// write), however the peer and the name resolver pace their answers: a host name
+// is resolved on a thread of its own (one at a time per client), so a resolver
+// that never answers costs a call timeout_ms and interrupt() nothing; a later call
+// waits for the same lookup. Every reply is checked: transaction id, protocol id 0, an MBAP
 // length that matches the reply, the unit id, the function, the byte count, and a
 // coil write's echo.
 // After any failure except a Modbus exception reply or a bad value (the
@@ -23,9 +25,12 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <sys/socket.h>
 
 #include "protocol/modbus_map.h"
 
@@ -72,13 +77,29 @@ struct BackoffPolicy {
   std::chrono::milliseconds max{2000};
 };
 
+// One address a host name resolved to.
+struct Endpoint {
+  int family = 0;
+  sockaddr_storage address{};
+  socklen_t length = 0;
+};
+
+// Resolves host:port to its addresses, or throws std::runtime_error saying why
+// not. May block as long as the system's resolver does: the client calls it on a
+// thread of its own, never for a numeric address.
+using Resolver = std::function<std::vector<Endpoint>(const std::string& host, int port)>;
+// The default Resolver: getaddrinfo (TCP, IPv4 or IPv6).
+std::vector<Endpoint> resolveHost(const std::string& host, int port);
+
 class ModbusTcpClient : public RegisterSource {
  public:
   using Clock = std::function<std::chrono::steady_clock::time_point()>;
 
   // The map must be valid (validateModbusMap). Does not connect yet. `clock` is
-  // for tests of the backoff; by default the steady clock.
-  explicit ModbusTcpClient(ModbusMap map, BackoffPolicy backoff = {}, Clock clock = {});
+  // for tests of the backoff; by default the steady clock. `resolver`: for tests
+  // of a slow or silent name resolver; by default resolveHost.
+  explicit ModbusTcpClient(ModbusMap map, BackoffPolicy backoff = {}, Clock clock = {},
+                           Resolver resolver = {});
   ~ModbusTcpClient() override;
   ModbusTcpClient(const ModbusTcpClient&) = delete;
   ModbusTcpClient& operator=(const ModbusTcpClient&) = delete;
@@ -102,9 +123,13 @@ class ModbusTcpClient : public RegisterSource {
  private:
   using Deadline = std::chrono::steady_clock::time_point;
   using Bytes = std::vector<std::uint8_t>;
+  struct Lookup;  // a host name being resolved, shared with its thread
 
   Deadline deadline() const;
   void ensureConnected(Deadline deadline);
+  // The host's addresses: at once for a numeric address, else from the lookup in
+  // flight (started when none is), waited for until the deadline or interrupt().
+  std::vector<Endpoint> resolve(Deadline deadline);
   void connectTo(Deadline deadline);
   void readInto(const ReadBlock& block, std::uint16_t* out, Deadline deadline);
   // Sends one request PDU and returns the reply PDU after checking its MBAP
@@ -126,6 +151,8 @@ class ModbusTcpClient : public RegisterSource {
   std::vector<ReadBlock> blocks_;
   BackoffPolicy policy_;
   Clock clock_;
+  Resolver resolver_;
+  std::shared_ptr<Lookup> lookup_;  // in flight, or done and not taken yet
   int fd_ = -1;
   int wake_fd_ = -1;  // eventfd written by interrupt()
   std::atomic<bool> interrupted_{false};
