@@ -117,7 +117,10 @@ class ShadowSession {
   void setState(ShadowState s, const std::string& reason);
   void onGoodPoll(PollSample& s);
   void onBadPoll(const std::string& kind, const std::string& what);
-  void writeFeedHold(protocol::RegisterSource& source);
+  // Writes the hold: written, failed, or not tried (the client waits to reconnect
+  // or is interrupted).
+  enum class HoldWrite { kWritten, kFailed, kNotTried };
+  HoldWrite writeFeedHold(protocol::RegisterSource& source);
   // Live with no good sample for watchdog_: stale. Carve thread.
   void watchdog();
   // Takes a new report snapshot when the stock changed since the last one and

@@ -18,6 +18,11 @@ constexpr auto kCarveTick = std::chrono::milliseconds(50);
 // The report snapshot is at most this old while samples keep coming; once none
 // came for kCarveTick it is taken at once (if the stock changed).
 constexpr auto kReportMaxAge = std::chrono::milliseconds(500);
+// A failed feed-hold write is tried again after this, doubling per failure up to
+// kHoldRetryMax: the polls go on between the tries, so a controller that
+// ignores the write (each try a timeout) does not also blind the shadow.
+constexpr auto kHoldRetryFirst = std::chrono::milliseconds(50);
+constexpr auto kHoldRetryMax = std::chrono::milliseconds(2000);
 
 class UnknownTool : public std::runtime_error {
  public:
@@ -40,7 +45,7 @@ std::string ShadowSession::unknownTool(const PollSample& s) const {
          "): its moves are neither cut nor checked until a tool of the job is in the spindle";
 }
 
-void ShadowSession::writeFeedHold(protocol::RegisterSource& source) {
+ShadowSession::HoldWrite ShadowSession::writeFeedHold(protocol::RegisterSource& source) {
   const nlohmann::json coil = spec_.map.feed_hold.coil;
   try {
     source.writeFeedHold(true);
@@ -50,11 +55,13 @@ void ShadowSession::writeFeedHold(protocol::RegisterSource& source) {
       feed_hold_error_.clear();
     }
     events_.publish("feed_hold", {{"ok", true}, {"coil", coil}});
+    return HoldWrite::kWritten;
   } catch (const protocol::ModbusError& e) {
-    if (e.kind() == protocol::ModbusError::Kind::kInterrupted) return;  // stopping
-    hold_pending_ = true;  // again before the next poll
+    if (e.kind() == protocol::ModbusError::Kind::kInterrupted)
+      return HoldWrite::kNotTried;  // stopping
+    hold_pending_ = true;           // again later
     // Waiting to reconnect is not a new failure: the one that started it stays.
-    if (e.kind() == protocol::ModbusError::Kind::kBackoff) return;
+    if (e.kind() == protocol::ModbusError::Kind::kBackoff) return HoldWrite::kNotTried;
     const std::string reason =
         std::string("feed_hold: ") + protocol::modbusErrorKindName(e.kind()) + ": " + e.what();
     bool first = false;
@@ -65,8 +72,9 @@ void ShadowSession::writeFeedHold(protocol::RegisterSource& source) {
       feed_hold_error_ = reason;
       last_error_ = reason;
     }
-    // Once per run of failures (it is retried at every poll).
+    // Once per run of failures (it is retried until it succeeds).
     if (first) events_.publish("feed_hold", {{"ok", false}, {"coil", coil}, {"error", reason}});
+    return HoldWrite::kFailed;
   }
 }
 
@@ -88,8 +96,28 @@ void ShadowSession::pollLoop() {
   const auto pose_every = std::chrono::duration_cast<SteadyClock::duration>(
       Seconds(1.0 / std::max(options_.pose_hz, 0.01)));
   auto next = SteadyClock::now();
+  SteadyClock::time_point hold_retry_at{};  // after a failed write
+  SteadyClock::duration hold_wait = kHoldRetryFirst;
+  bool hold_after_read = false;  // a failed write is tried again after a good read
   while (!stopping_.load()) {
-    if (hold_pending_.exchange(false)) writeFeedHold(*source);
+    // Before the read (the hold is what matters). A failed write is tried again
+    // after its own backoff and a good read: a write that breaks the connection
+    // (a timeout) would otherwise take every reconnection, and no read be made.
+    if (hold_pending_.load() && !hold_after_read && SteadyClock::now() >= hold_retry_at &&
+        hold_pending_.exchange(false)) {
+      switch (writeFeedHold(*source)) {
+        case HoldWrite::kWritten:
+          hold_wait = kHoldRetryFirst;
+          break;
+        case HoldWrite::kFailed:
+          hold_after_read = true;
+          hold_retry_at = SteadyClock::now() + hold_wait;
+          hold_wait = std::min<SteadyClock::duration>(2 * hold_wait, kHoldRetryMax);
+          break;
+        case HoldWrite::kNotTried:
+          break;  // at the next poll
+      }
+    }
     try {
       const protocol::ModbusSample r = source->read();
       PollSample s{SteadyClock::now(), r.joints, r.tool, r.spindle_on, r.line, false};
@@ -98,6 +126,7 @@ void ShadowSession::pollLoop() {
       if (const std::string unknown = unknownTool(s); !unknown.empty()) throw UnknownTool(unknown);
       s.resync = !last_good || (failing && s.t - *last_good > bridge);
       failing = false;
+      hold_after_read = false;
       last_good = s.t;
       onGoodPoll(s);
       if (s.t >= next_pose) {
