@@ -150,14 +150,14 @@ double apply(Op op, double left, double right, const Cursor& c, std::size_t at) 
     case Op::kGt:
       result = left > right ? 1.0 : 0.0;
       break;
-    case Op::kGe:  // LinuxCNC: GE and LE also hold within the EQ tolerance
-      result = (std::fabs(left - right) < kToleranceEqual || left >= right) ? 1.0 : 0.0;
+    case Op::kGe:  // GE and LE compare exactly, no EQ tolerance (rs274 2.9)
+      result = left >= right ? 1.0 : 0.0;
       break;
     case Op::kLt:
       result = left < right ? 1.0 : 0.0;
       break;
     case Op::kLe:
-      result = (std::fabs(left - right) < kToleranceEqual || left <= right) ? 1.0 : 0.0;
+      result = left <= right ? 1.0 : 0.0;
       break;
     case Op::kAnd:
       result = (left != 0.0 && right != 0.0) ? 1.0 : 0.0;

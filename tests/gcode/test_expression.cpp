@@ -42,8 +42,13 @@ TEST(Expression, ComparisonsAndLogic) {
   EXPECT_EQ(x("[1 LT 2]"), 1.0);
   EXPECT_EQ(x("[2 LT 2]"), 0.0);
   EXPECT_EQ(x("[2 LE 2]"), 1.0);
-  EXPECT_EQ(x("[2.00005 LE 2]"), 1.0);  // LE / GE also within 0.0001, as LinuxCNC
-  EXPECT_EQ(x("[2 GE 2.00005]"), 1.0);
+  // EQ / NE hold within 0.0001, LE / GE do not: rs274 2.9 gives 0 for both of these
+  // (mdhd gave 1, so a `while [#1 LE 10]` loop on a sum of 0.1 steps ran once more).
+  EXPECT_EQ(x("[2.00005 LE 2]"), 0.0);
+  EXPECT_EQ(x("[2 GE 2.00005]"), 0.0);
+  EXPECT_EQ(x("[2.00005 GE 2]"), 1.0);
+  EXPECT_EQ(x("[2 EQ 2.00005]"), 1.0);
+  EXPECT_EQ(x("[2 NE 2.00005]"), 0.0);
   EXPECT_EQ(x("[2.001 LE 2]"), 0.0);
   EXPECT_EQ(x("[3 GT 2]"), 1.0);
   EXPECT_EQ(x("[2 GE 3]"), 0.0);
