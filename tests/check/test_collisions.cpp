@@ -232,6 +232,43 @@ TEST(Collisions, ContactsShallowerThanTheToleranceAreNotCollisions) {
   EXPECT_EQ(r.status, Status::kClean);
 }
 
+// A contact tolerance below a quarter of the grid spacing (an mdhd option: any value
+// >= 0) holds for contacts between it and h/4 too. The depth's pruning skipped every
+// overlap whose bound was within h/4 of the depth found so far, 0 at the start: at
+// density 5 (h/4 = 0.05) with a tolerance of 0.01 a rapid 0.03 mm into the stock top
+// and a holder 0.03 mm in ran `clean` until session 23.
+TEST(Collisions, ContactsBetweenASmallToleranceAndAQuarterSpacingAreCollisions) {
+  for (const double tol : {0.0, 0.01}) {
+    Rig s;
+    s.options.density = 5;
+    s.options.contact_tolerance = tol;
+    const Report r = run(std::move(s), std::string(kStart) +
+                                           "M3 S9000\n"         // 4
+                                           "G0 X20 Y20 Z5\n"    // 5
+                                           "G0 Z-0.03\n"        // 6: 0.03 mm in
+                                           "G0 Z5\n"            // 7
+                                           "G0 X10 Y10\n"       // 8
+                                           "G1 Z-30.03 F200\n"  // 9: holder (30 mm up) 0.03 in
+                                           "G0 Z5\n"            // 10
+                                           "G0 X30 Y30\n"       // 11
+                                           "G0 Z-0.005\n"       // 12: 0.005 mm: below 0.01
+                                           "G0 Z5\nM30\n");
+    SCOPED_TRACE(tol);
+    const auto rapid = ofType(r, CollisionType::kRapidIntoStock);
+    ASSERT_EQ(rapid.size(), tol == 0.0 ? 2u : 1u);
+    EXPECT_EQ(rapid[0]->line, 6);
+    EXPECT_NEAR(rapid[0]->depth, 0.03, 1e-6);  // a flat bottom: sampled where it lies
+    if (tol == 0.0) {
+      EXPECT_EQ(rapid[1]->line, 12);
+    }
+    const auto holder = ofType(r, CollisionType::kHolderContact);
+    ASSERT_EQ(holder.size(), 1u);
+    EXPECT_EQ(holder[0]->line, 9);
+    EXPECT_NEAR(holder[0]->depth, 0.03, 1e-6);
+    EXPECT_EQ(r.collisions.size(), rapid.size() + 1);
+  }
+}
+
 // A thin tool dragged sideways through the stock: the shank's contact is as deep as
 // its radius at every density (the depth lines once shared one stride between x and y,
 // so a 10 mm move skipped the shank's middle line from 15 points/mm on and lost it).
