@@ -458,8 +458,18 @@ try {
       await page.waitForSelector("table.alarms tr.collision[data-type]", { timeout: 20000 });
       const types = await page.$$eval("table.alarms tr.collision[data-type]", (trs) => trs.map((t) => t.dataset.type));
       assert(types.every((t) => ["rapid_into_stock", "holder_contact", "shank_contact"].includes(t)), `alarm types ${types}`);
-      await page.click("table.alarms tr.collision[data-type] >> nth=0");
-      assert(Number(await page.getAttribute("canvas.viewer-canvas", "data-highlight")) >= 0, "the alarm's marker highlighted");
+      // Alarms keep coming (the simulator loops) and each new one goes on top, moving
+      // the rows: a click that waits for a row to stand still can wait for ever on a
+      // loaded machine. The click event itself is what the page acts on.
+      const alarmId = await page.getAttribute("table.alarms tr.collision[data-type] >> nth=0", "data-id");
+      await page.locator(`table.alarms tr[data-id="${alarmId}"]`).dispatchEvent("click");
+      // Its row selected and its marker (collision alarms by id, oldest first) highlighted.
+      await page.waitForFunction((id) => {
+        const ids = [...document.querySelectorAll("table.alarms tr.collision[data-id]")].map((t) => Number(t.dataset.id)).sort((x, y) => x - y);
+        const row = document.querySelector(`table.alarms tr[data-id="${id}"]`);
+        return row?.getAttribute("aria-selected") === "true" && ids.includes(Number(id)) &&
+          document.querySelector("canvas.viewer-canvas")?.dataset.highlight === String(ids.indexOf(Number(id)));
+      }, alarmId, { timeout: 5000 });
       mark("alarm");
       await page.waitForSelector('canvas.viewer-canvas[data-state="drawn"]', { timeout: 10000 });
       assert(Number(await page.getAttribute("canvas.viewer-canvas", "data-triangles")) > 0, "live mesh drawn");
