@@ -371,6 +371,21 @@ try {
       assert(r.passes.length > 10, `axe checked ${r.passes.length} rules on ${hash}`);
       for (const v of r.violations) found.push(`${hash}: ${v.id} (${v.impact}) ${v.help}, e.g. ${v.nodes[0]?.target.join(" ")}`);
     }
+    // The shadow form with refusals at its fields, and its JSON view.
+    await a11y.goto(`${service.base}/#/shadows`);
+    await a11y.waitForSelector("#reg-X-address");
+    if (!(await a11y.evaluate(() => Boolean(window.axe)))) await a11y.addScriptTag({ content: axe });
+    await a11y.fill("#reg-Y-address", "1");
+    await a11y.click("#shadow-start");
+    await a11y.waitForSelector("#reg-Y-address-error:not([hidden])");
+    for (const what of ["shadow form with errors", "shadow JSON"]) {
+      if (what === "shadow JSON") {
+        await a11y.click("#shadow-as-json");
+        await a11y.waitForSelector("#shadow-json");
+      }
+      const r = await a11y.evaluate(async () => await window.axe.run(document, { resultTypes: ["violations"] }));
+      for (const v of r.violations) found.push(`${what}: ${v.id} (${v.impact}) ${v.help}, e.g. ${v.nodes[0]?.target.join(" ")}`);
+    }
     assert(found.length === 0, found.join("\n"));
     await a11y.context().close();
   });
@@ -389,6 +404,17 @@ try {
     await tablet.tap('.collisions-table tr[data-type="shank_contact"]');
     await tablet.waitForSelector('.program .pl.hl[data-line="12"]');
     await shot(tablet, "tablet-job");
+    // The shadow form: its register rows fit the width, their controls big enough.
+    await tablet.goto(`${service.base}/#/shadows`);
+    await tablet.waitForSelector("#reg-Z-scale");
+    equal(await tablet.evaluate(() => document.documentElement.scrollWidth <= window.innerWidth), true, "no sideways scrolling");
+    for (const sel of ["#reg-X-address", "#reg-X-type", "#reg-X-word_order", "#reg-X-scale", "#mb-host", "label[for=fh-enabled]", "#shadow-start"]) {
+      const b = await tablet.locator(sel).first().boundingBox();
+      assert(b && b.height >= 40, `${sel} is ${b?.height} px tall`);
+    }
+    const z = await tablet.locator("#reg-Z-scale").boundingBox();
+    assert(z.x + z.width <= 820, `the Z row fits: ends at ${z.x + z.width}`);
+    await shot(tablet, "tablet-shadow-form");
     await noProblems(tablet);
     await tablet.context().close();
   });
@@ -423,26 +449,96 @@ try {
     guarded.child.kill("SIGTERM");
   });
 
+  // The "start a shadow" form: the crash job's cell reused (machine, tools, stock,
+  // program), the default register map (what modbus-sim serves), client-side
+  // refusals at their fields, the JSON view both ways, the service's 400 at its field.
+  async function startShadowThroughForm(page, simPort) {
+    await page.goto(`${service.base}/#/shadows`);
+    await page.waitForSelector(`#shadow-job option[value="${jobId}"]`, { state: "attached" });
+    await page.waitForSelector('#shadow-machine option[value="3axis-mill"]', { state: "attached" });
+    await page.selectOption("#shadow-job", jobId);
+    await page.click("#shadow-use-job");
+    await page.waitForFunction(() => document.querySelector("#shadow-program")?.value.includes("G1 Z-25 F200"));
+    equal(await page.inputValue("#shadow-machine"), "(inline)", "the job's own machine chosen");
+    assert(/3-axis/.test(await page.textContent('#shadow-machine option[value="(inline)"]')), "the job's machine named");
+    const rows = await page.$$eval(".reg-row", (rs) => rs.map((r) => [r.querySelector(".reg-name span").textContent, r.querySelector("input").value, r.querySelector("select").value]));
+    equal(rows, [["X", "0", "float32"], ["Y", "2", "float32"], ["Z", "4", "float32"], ["Tool number", "6", "uint16"], ["Spindle on", "7", "uint16"], ["Program line", "8", "uint32"]], "one row per joint, default registers");
+    assert(await page.isDisabled("#reg-tool-word_order") && !(await page.isDisabled("#reg-line-word_order")), "word order for 32-bit types only");
+    const cell = JSON.parse(await page.inputValue("#shadow-cell"));
+    equal([cell.stock?.box?.min, cell.stock?.box?.max, cell.tools?.[0]?.holder?.length], [[0, 0, -40], [100, 80, 0], 1], "the job's stock and tool");
+    equal(Object.keys(cell).includes("machine") || Object.keys(cell).includes("program"), false, "machine and program apart from the cell");
+    cell.options = { ...cell.options, density: 2 };
+    await page.fill("#shadow-cell", JSON.stringify(cell, null, 2));
+    // Feed hold: off, and a warning that turning it on writes to the controller.
+    assert(!(await page.isChecked("#fh-enabled")), "feed hold off by default");
+    await page.check("#fh-enabled");
+    await page.waitForSelector('#fh-warning[data-armed="true"]');
+    assert(/writes to the controller/.test(await page.textContent("#fh-warning")), "feed hold warning");
+    await page.uncheck("#fh-enabled");
+    // Refused before sending, at the fields: no host, Y overlapping X.
+    await page.fill("#reg-Y-address", "1");
+    await page.click("#shadow-start");
+    await page.waitForSelector("#reg-Y-address-error:not([hidden])");
+    assert(/Registers 1\.\.2 overlap joint X/.test(await page.textContent("#reg-Y-address-error")), "overlap at Y");
+    assert(/overlap joint Y/.test(await page.textContent("#reg-X-address-error")), "overlap at X");
+    assert(/host name or IP address/.test(await page.textContent("#mb-host-error")), "host needed");
+    equal(await page.getAttribute("#reg-Y-address", "aria-invalid"), "true", "Y marked invalid");
+    equal(await page.evaluate(() => document.activeElement.id), "mb-host", "the first problem focused");
+    assert(/#\/shadows$/.test(page.url()), "nothing sent");
+    await page.fill("#reg-Y-address", "2");
+    await page.fill("#mb-host", "127.0.0.1");
+    await page.fill("#mb-port", String(simPort));
+    await page.fill("#mb-timeout_ms", "500");
+    // Edit as JSON: the form's document, changed there, read back into the form.
+    await page.click("#shadow-as-json");
+    const doc = JSON.parse(await page.inputValue("#shadow-json"));
+    equal(doc.modbus.port, simPort, "port in the JSON");
+    equal(doc.modbus.joints, { X: { address: 0, type: "float32" }, Y: { address: 2, type: "float32" }, Z: { address: 4, type: "float32" } }, "joints in the JSON");
+    equal([doc.machine.name, doc.options.density, doc.program.includes("G1 Z-25 F200")], ["3-axis vertical mill", 2, true], "the cell in the JSON");
+    doc.modbus.timeout_ms = 600;
+    doc.modbus.line.scale = 1;
+    doc.modbus.joints.B = { address: 30, type: "int32", word_order: "cdab" };  // the machine has no B
+    await page.fill("#shadow-json", JSON.stringify(doc, null, 2));
+    await page.click("#shadow-as-json");
+    await page.waitForSelector("#mb-timeout_ms");
+    equal([await page.inputValue("#mb-timeout_ms"), await page.inputValue("#reg-line-scale"), await page.inputValue("#mb-port")], ["600", "1", String(simPort)], "JSON edits in the form");
+    equal([await page.inputValue("#reg-B-address"), await page.inputValue("#reg-B-type"), await page.inputValue("#reg-B-word_order")], ["30", "int32", "cdab"], "a joint the form did not have");
+    await page.click("#reg-B-remove");
+    await page.waitForSelector("#reg-B-address", { state: "detached" });
+    delete doc.modbus.joints.B;
+    await page.click("#shadow-as-json");
+    equal(JSON.parse(await page.inputValue("#shadow-json")), doc, "form -> JSON -> form -> JSON unchanged");
+    await page.click("#shadow-as-json");
+    await page.waitForSelector("#mb-host");
+    // The service's 400 shown at the field its path names (the cell's tools).
+    const bad = structuredClone(cell);
+    bad.tools[0].diameter = "x";
+    await page.fill("#shadow-cell", JSON.stringify(bad, null, 2));
+    await page.click("#shadow-start");
+    await page.waitForSelector("#shadow-cell-error:not([hidden])");
+    assert(/expected a number/.test(await page.textContent("#shadow-cell-error")), "the 400 at the cell");
+    assert(/HTTP 400/.test(await page.textContent("#shadow-result")) && /tools\[0\]\.diameter/.test(await page.textContent("#shadow-result")), "the 400 in full");
+    await page.fill("#shadow-cell", JSON.stringify(cell, null, 2));
+    // A program that does not interpret: the 422's line and column at the program.
+    const program = await page.inputValue("#shadow-program");
+    await page.fill("#shadow-program", "G21 G90\nG1 X10 Q\nM30\n");
+    await page.click("#shadow-start");
+    await page.waitForSelector("#shadow-program-error:not([hidden])");
+    assert(/^Program line 2, column 9: /.test(await page.textContent("#shadow-program-error")), `422 at the program: ${await page.textContent("#shadow-program-error")}`);
+    equal(await page.evaluate(() => document.activeElement.id), "shadow-program", "the program focused at the line");
+    assert(await page.isHidden("#shadow-cell-error"), "the cell's earlier refusal cleared");
+    await page.fill("#shadow-program", program);
+    await noProblems(page);
+    await page.click("#shadow-start");
+    await page.waitForURL(/#\/shadows\/sh-[0-9a-f]+$/);
+  }
+
   if (!process.env.E2E_SKIP_SHADOW) {
     await step("Shadow against mdhd modbus-sim: live state, joints, alarms, live mesh, stop", async () => {
       const sim = await startProcess(["modbus-sim", path.join(examples, "crash-3axis.json"), "--port", "0", "--speed", "20", "--loop"],
         /listening on [0-9.]+:([0-9]+)/, "mdhd modbus-sim");
       const simPort = Number(sim.match[1]);
-      const machine = JSON.parse(readFileSync(path.join(examples, "machine-3axis.json"), "utf8"));
-      const job = JSON.parse(readFileSync(path.join(examples, "crash-3axis.json"), "utf8"));
-      const doc = {
-        machine, tools: job.tools, stock: job.stock, options: { density: 2 },
-        program: readFileSync(path.join(examples, "crash-3axis.ngc"), "utf8"),
-        modbus: {
-          host: "127.0.0.1", port: simPort, poll_hz: 50, timeout_ms: 500,
-          joints: { X: { address: 0, type: "float32" }, Y: { address: 2, type: "float32" }, Z: { address: 4, type: "float32" } },
-          tool: { address: 6, type: "uint16" }, spindle_on: { address: 7, type: "uint16" }, line: { address: 8, type: "uint32" },
-        },
-      };
-      await page.goto(`${service.base}/#/shadows`);
-      await page.fill("#shadow-json", JSON.stringify(doc, null, 2));
-      await page.click('button:text("Start shadowing")');
-      await page.waitForURL(/#\/shadows\/sh-[0-9a-f]+$/);
+      await startShadowThroughForm(page, simPort);
       const t0 = Date.now();
       const mark = (what) => console.log(`  ${what} after ${Date.now() - t0} ms`);
       await page.waitForSelector('.shadow-state[data-state="live"]', { timeout: 10000 });
