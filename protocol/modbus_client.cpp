@@ -359,6 +359,25 @@ ModbusTcpClient::Bytes ModbusTcpClient::exchange(const Bytes& pdu, const std::st
   putBe16(request, static_cast<unsigned>(pdu.size() + 1));
   request.push_back(static_cast<std::uint8_t>(map_.unit_id));
   request.insert(request.end(), pdu.begin(), pdu.end());
+  // Bytes waiting before the request is sent answer no request of ours: a peer
+  // that sends unasked, or more than a reply said. Taken for this reply they
+  // would fail it as another request's reply, which misleads.
+  std::uint8_t early[8];
+  const ssize_t waiting = recv(fd_, early, sizeof early, MSG_PEEK | MSG_DONTWAIT);
+  if (waiting > 0) {
+    std::string bytes;
+    for (ssize_t i = 0; i < waiting; ++i) bytes += (i > 0 ? " " : "") + hex(early[i], 2);
+    fail(Kind::kMalformed, EMBBADDATA, what,
+         "the peer sent bytes no request asked for (" + bytes +
+             (waiting == static_cast<ssize_t>(sizeof early) ? " ..." : "") +
+             ") before this request");
+  }
+  if (waiting == 0) {
+    fail(Kind::kConnectionLost, ECONNRESET, what,
+         "the peer closed the connection before this request");
+  }
+  if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)
+    fail(classifyErrno(errno), errno, what, std::strerror(errno));
   sendAll(request, what, deadline);
 
   std::uint8_t header[kMbapBytes];
