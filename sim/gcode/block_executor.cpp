@@ -215,6 +215,7 @@ void BlockExecutor::runModes(Step& st) {
   if (st.w.has('S')) st.s.speed = st.w.get('S');
   setTool(st);
   setSpindleAndCoolant(st);
+  setOverrides(st);
   checkIo(st);
   if (st.w.g[kGNonModal] == 40) {
     if (!st.w.has('P')) st.fail("Dwell time missing with G4", st.w.g_column[kGNonModal]);
@@ -233,6 +234,20 @@ void BlockExecutor::runModes(Step& st) {
   if (st.w.g[kGDistance] >= 0) st.s.incremental = st.w.g[kGDistance] == 910;
   if (st.w.g[kGArcDistance] >= 0) st.s.arc_absolute = st.w.g[kGArcDistance] == 901;
   if (st.w.g[kGRetract] >= 0) st.s.retract_to_r = st.w.g[kGRetract] == 990;
+}
+
+// M48..M53: LinuxCNC's override switches; they only change what #<_feed_override>,
+// #<_speed_override>, #<_adaptive_feed> and #<_feed_hold> read (P0 off, else on).
+void BlockExecutor::setOverrides(Step& st) {
+  const int m = st.w.m[kMOverride];
+  if (m < 0) return;
+  const bool on = !(st.w.has('P') && st.w.get('P') == 0.0);
+  InterpState& s = st.s;
+  if (m == 480 || m == 490) s.feed_override = s.speed_override = m == 480;
+  if (m == 500) s.feed_override = on;
+  if (m == 510) s.speed_override = on;
+  if (m == 520) s.adaptive_feed = on;
+  if (m == 530) s.feed_hold = on;
 }
 
 // M62..M65 (digital outputs), M66 (wait on an input) and M67/M68 (analog

@@ -61,6 +61,7 @@ class BlockExecutor {
   void executeSteps(Step& st);
   void checkWordUse(Step& st);
   void runModes(Step& st);
+  void setOverrides(Step& st);
   void checkIo(Step& st);
   void runNonModal(Step& st);
   void runStop(Step& st);

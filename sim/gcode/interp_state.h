@@ -43,6 +43,8 @@ struct InterpState {
   double speed = 0.0;
   SpindleState spindle = SpindleState::kOff;
   bool mist = false, flood = false;
+  // M48..M53 switches (#<_feed_override> ...): nothing a verifier models, but read back.
+  bool feed_override = true, speed_override = true, adaptive_feed = false, feed_hold = true;
   int tool = 0;            // in the spindle
   int selected_tool = -1;  // T word seen (-1: none)
   // Positions in program coordinates (mm, degrees): under cutter compensation

@@ -13,6 +13,8 @@ Interpreter::Interpreter(InterpreterConfig config, MotionSink& sink)
   params_.setPredefined([this](std::string_view name) -> std::optional<double> {
     double v = 0.0;
     if (executor_.predefined(name, v)) return v;
+    if (reader_ && name == "_line") return reader_->currentLine();
+    if (reader_ && name == "_call_level") return reader_->callLevel();
     return std::nullopt;
   });
   publishParameters(true);
@@ -24,6 +26,11 @@ void Interpreter::run(std::unique_ptr<LineSource> program) {
   options.block_delete = config.block_delete;
   options.each_line = config.each_line;
   Reader reader(std::move(program), params_, config.subroutine_loader, options);
+  reader_ = &reader;
+  struct Detach {
+    const Reader*& r;
+    ~Detach() { r = nullptr; }
+  } detach{reader_};
   Block block;
   while (!executor_.ended() && reader.next(block)) {
     executor_.execute(block);

@@ -18,6 +18,8 @@
 
 namespace mdhd::gcode {
 
+class Reader;
+
 class Interpreter {
  public:
   Interpreter(InterpreterConfig config, MotionSink& sink);
@@ -37,6 +39,7 @@ class Interpreter {
 
   BlockExecutor executor_;
   ParameterStore params_;
+  const Reader* reader_ = nullptr;  // during run(): answers #<_line>, #<_call_level>
   std::uint64_t blocks_ = 0;
   int probe_published_ = 0;                           // probe_count last written to #5061..#5070
   static constexpr int kFirstOffsetParameter = 5161;  // #5161 .. #5390 (G59.3 rotation)

@@ -45,8 +45,8 @@ bool BlockExecutor::predefined(std::string_view name, double& v) const {
     double value;
   };
   const Entry entries[] = {
-      {"vmajor", 2.0},
-      {"vminor", 9.0},
+      {"vmajor", 2.9},  // rs274 2.9.0: 2.9 and 0,
+      {"vminor", 0.0},
       {"motion_mode", static_cast<double>(s.motion)},
       {"plane", s.plane == Plane::kXY ? 170.0 : (s.plane == Plane::kXZ ? 180.0 : 190.0)},
       {"ccomp", static_cast<double>(compCode(s))},
@@ -70,10 +70,10 @@ bool BlockExecutor::predefined(std::string_view name, double& v) const {
       {"spindle_cw", flag(s.spindle == SpindleState::kClockwise)},
       {"mist", flag(s.mist)},
       {"flood", flag(s.flood)},
-      {"speed_override", 1.0},
-      {"feed_override", 1.0},
-      {"adaptive_feed", 0.0},
-      {"feed_hold", 0.0},
+      {"speed_override", flag(s.speed_override)},
+      {"feed_override", flag(s.feed_override)},
+      {"adaptive_feed", flag(s.adaptive_feed)},
+      {"feed_hold", flag(s.feed_hold)},
       {"feed", s.feed_word},
       {"rpm", s.speed},
       {"current_tool", static_cast<double>(s.tool)},
@@ -81,6 +81,7 @@ bool BlockExecutor::predefined(std::string_view name, double& v) const {
       {"selected_tool", static_cast<double>(s.selected_tool)},
       {"selected_pocket", static_cast<double>(s.selected_tool)},
       {"task", 0.0},
+      {"remap_level", 0.0},
   };
   for (const Entry& e : entries) {
     if (name == e.name) {

@@ -59,6 +59,10 @@ class Reader {
   bool next(Block& out);
 
   std::uint64_t steps() const { return steps_; }
+  // For #<_line> and #<_call_level>: the line being read (in its file) and the
+  // subroutine call depth (0: the program).
+  int currentLine() const { return ref_.line; }
+  int callLevel() const { return static_cast<int>(frames_.size()) - 1; }
   // The program's first line was a '%' tape mark / a closing '%' line ended it.
   // LinuxCNC rejects a program that starts with '%' and reaches the end of
   // the file without the closing '%' or M2/M30 ("File ended with no percent

@@ -491,6 +491,44 @@ TEST(Interpreter, PredefinedParametersAndPositionParameters) {
   expectEnd(r.motions[1], 12, 0, 0);  // 1*10 + 1 + 1
 }
 
+// Values rs274 2.9 gives (checked against it by hand, DEBUG messages): mdhd had
+// _vmajor 2 / _vminor 9, _feed_hold 0, overrides fixed at 1, and no _line,
+// _call_level or _remap_level.
+TEST(Interpreter, PredefinedVersionLineCallLevelAndOverrideSwitches) {
+  const Result r =
+      run("#1=#<_vmajor>\n"         // 1
+          "#2=#<_vminor>\n"         // 2
+          "#3=#<_line>\n"           // 3
+          "o<s> sub\n"              // 4
+          "  #31=#<_call_level>\n"  // 5
+          "  #32=#<_line>\n"        // 6
+          "o<s> endsub\n"           // 7
+          "o<s> call\n"             // 8
+          "#6=#<_call_level>\n"     // 9
+          "#7=[#<_feed_hold>*1000 + #<_feed_override>*100 + #<_speed_override>*10 + "
+          "#<_adaptive_feed>]\n"  // 10
+          "M49\n"
+          "M52 P1\n"
+          "M53 P0\n"
+          "#8=[#<_feed_hold>*1000 + #<_feed_override>*100 + #<_speed_override>*10 + "
+          "#<_adaptive_feed>]\n"
+          "M48\n"
+          "M50 P0\n"
+          "#9=[#<_feed_hold>*1000 + #<_feed_override>*100 + #<_speed_override>*10 + "
+          "#<_adaptive_feed> + #<_remap_level>]\n"
+          "G0 X0\n");
+  ASSERT_FALSE(r.error) << r.error->what();
+  EXPECT_DOUBLE_EQ(r.param(1), 2.9);
+  EXPECT_EQ(r.param(2), 0.0);
+  EXPECT_EQ(r.param(3), 3.0);
+  EXPECT_EQ(r.param(31), 1.0);  // #1..#30 are the sub's own
+  EXPECT_EQ(r.param(32), 6.0);
+  EXPECT_EQ(r.param(6), 0.0);
+  EXPECT_EQ(r.param(7), 1110.0);  // feed hold on, both overrides on, adaptive feed off
+  EXPECT_EQ(r.param(8), 1.0);     // M49: overrides off; M52 P1, M53 P0
+  EXPECT_EQ(r.param(9), 11.0);    // M48 then M50 P0: the feed override off again
+}
+
 TEST(ToolTable, ParsesLinuxCncFormat) {
   const ToolTable t = parseToolTable("; comment\nT1 P1 Z50.8 D6.35 ;mill\nT7 P5 Z1 D0.5\n", 25.4);
   ASSERT_EQ(t.entries().size(), 2u);
