@@ -212,8 +212,10 @@ void BlockExecutor::setToolLength(Step& st) {
       break;
     case 432:  // G43.2: an additional offset on top of the one in effect
       if (s.tool_length_mode == 434) st.fail("Cannot use G43.2 under G43.4", column);
-      if (st.w.has('H') == st.w.hasAxis())
-        st.fail("G43.2 needs either an H word or axis offsets, not both", column);
+      if (!st.w.has('H') && !st.w.hasAxis())
+        st.fail("G43.2: No axes specified and H word missing", column);
+      if (st.w.has('H') && st.w.hasAxis())
+        st.fail("G43.2: Can not have both H and axis words", column);
       for (char c : {'X', 'Y', 'A', 'B', 'C', 'U', 'V', 'W'})
         if (st.w.has(c)) st.failWord(c, "G43.2 offsets other than Z are not supported");
       s.tool_length += st.w.has('H') ? lengthOf(hWord()) : st.lenWord('Z');

@@ -132,7 +132,7 @@ TEST(AdditionalToolOffset, G43Point2AddsToTheOffsetInEffect) {
   ASSERT_EQ(r.motions.size(), 1u);  // the Z word is the offset, not a move
   EXPECT_DOUBLE_EQ(r.motions.back().end[kZ], 51.5);
   EXPECT_STREQ(runWithTools("G43.2\n").error->what(),
-               "G43.2 needs either an H word or axis offsets, not both");
+               "G43.2: No axes specified and H word missing");
   EXPECT_STREQ(runWithTools("G43.2 X1\n").error->what(),
                "G43.2 offsets other than Z are not supported");
 }

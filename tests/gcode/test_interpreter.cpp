@@ -196,6 +196,13 @@ TEST(Interpreter, G52SetsTheG92OffsetsOfTheNamedAxes) {
   expectError("G21\nG52 G92 X1\n", "Two G codes used from same modal group");
 }
 
+// G43.2 with neither or both of H and axis words: rs274's two messages (mdhd said
+// "needs either an H word or axis offsets, not both" for both, wrong for the first).
+TEST(InterpreterErrors, G43Point2WordsNameWhatIsWrong) {
+  expectError("G21\nG43.2\n", "G43.2: No axes specified and H word missing");
+  expectError("G21\nT1 M6\nG43.2 H1 Z5\n", "G43.2: Can not have both H and axis words", 3);
+}
+
 TEST(InterpreterErrors, LeftHandTappingNeedsTheSpindleCounterclockwise) {
   expectError("G21 G0 Z2 F100\nG74 X1 R1 Z-1\n", "Spindle not turning in G74");
   expectError("G21 G0 Z2 F100 S100 M3\nG74 X1 R1 Z-1\n", "Spindle turning clockwise in G74");
