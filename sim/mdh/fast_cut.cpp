@@ -548,7 +548,15 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
     return d;
   };
   const bool volume = volumeDelta != nullptr;
+  // Corners read off their columns (ThreeMap::cornerCorrection) can change wherever a
+  // column or an edge did: in the region and the squares around it.
+  const int cu0 = std::max(region.lo[u] - box.lo[u] - 1, 0);
+  const int cu1 = std::min(region.hi[u] - box.lo[u] + 1, map.columnsU() - 1);
+  const int cv0 = std::max(region.lo[v] - box.lo[v] - 1, 0);
+  const int cv1 = std::min(region.hi[v] - box.lo[v] + 1, map.columnsV() - 1);
+  const bool corners = volume && map.threeWay();
   double delta = volume ? -columnTerms(0.25) : 0.0, edgeDelta = 0.0;
+  if (corners) delta -= map.cornerCorrection(cu0, cu1, cv0, cv1);
   double* edges = volume ? &edgeDelta : nullptr;
   bool moved = !s.changes.empty();
   if (map.threeWay()) {
@@ -596,6 +604,7 @@ FastCut fastCut(ThreeMap& map, const IntervalCache& cache, const GridBox& reach,
   if (!moved) return FastCut::kUnchanged;
   if (columnsMoved != nullptr) *columnsMoved = !s.changes.empty();
   for (const ColumnChange& c : s.changes) map.setHeight(c.iu, c.iv, c.height);
+  if (corners) delta += map.cornerCorrection(cu0, cu1, cv0, cv1);
   if (volume) *volumeDelta = edgeDelta + delta;
   return FastCut::kDone;
 }

@@ -164,7 +164,11 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
   thread_local std::vector<std::uint8_t> ups;
   thread_local std::vector<double> lengths;
   const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
-  auto rowSum = [&](int family, int r, int e0, int e1) {
+  const int nu = iu1 - iu0, nv = iv1 - iv0;  // squares
+  double* endsU = nullptr;
+  double* endsV = nullptr;
+  if (threeWay_) cornerScratch(nu, nv, endsU, endsV);
+  auto rowSum = [&](int family, int r, int e0, int e1, double* ends) {
     counts.resize(e1 + 1);
     ups.resize(e1 + 1);
     lengths.resize(e1 + 1);
@@ -181,25 +185,132 @@ double ThreeMap::squaresVolume(int iu0, int iu1, int iv0, int iv1) const {
     for (int e = e0; e < e1; ++e) {
       const double len0 = lengths[e], len1 = lengths[e + 1];
       // Full and empty columns are unflipped: opposite sides mean crossings at both ends.
-      if (ups[e] != ups[e + 1])
+      if (ups[e] != ups[e + 1]) {
         sum += mixedEdgeIntegral(counts[e], counts[e + 1], len0, len1, ups[e] != 0, base + e,
                                  row != nullptr ? row + pos : nullptr);
-      else
+        if (ends != nullptr) ends[2 * (e - e0)] = ends[2 * (e - e0) + 1] = kAgrees;
+      } else {
         sum += profileIntegral(counts[e], counts[e + 1], len0, len1, base + e,
                                row != nullptr ? row + pos : nullptr, ups[e] != 0);
+        if (ends != nullptr)
+          profileEnds(counts[e], counts[e + 1], len0, len1, base + e, row + pos, ups[e] != 0,
+                      ends + 2 * (e - e0));
+      }
       pos += crossingsAt(e);
     }
     return sum;
   };
   double sum = 0.0;
   for (int iv = iv0; iv <= iv1; ++iv)  // edges along u, each in 1 or 2 squares
-    sum += ((iv == iv0 || iv == iv1) ? 0.5 : 1.0) * rowSum(0, iv, iu0, iu1);
+    sum += ((iv == iv0 || iv == iv1) ? 0.5 : 1.0) *
+           rowSum(0, iv, iu0, iu1, endsU != nullptr ? endsU + 2 * nu * (iv - iv0) : nullptr);
   for (int iu = iu0; iu <= iu1; ++iu)
-    sum += ((iu == iu0 || iu == iu1) ? 0.5 : 1.0) * rowSum(1, iu, iv0, iv1);
+    sum += ((iu == iu0 || iu == iu1) ? 0.5 : 1.0) *
+           rowSum(1, iu, iv0, iv1, endsV != nullptr ? endsV + 2 * nv * (iu - iu0) : nullptr);
   for (int iv = iv0; iv <= iv1; ++iv)
     for (int iu = iu0; iu <= iu1; ++iu) {
       const int squares = (iu == iu0 || iu == iu1 ? 1 : 2) * (iv == iv0 || iv == iv1 ? 1 : 2);
       sum -= 0.25 * squares * columnLengthAt(iu, iv);
+    }
+  if (endsU != nullptr) sum += cornerSum(iu0, iu1, iv0, iv1, endsU, endsV);
+  return sum;
+}
+
+void ThreeMap::profileEnds(int f0, int f1, double len0, double len1, int edgeStart,
+                           const double* crossings, bool up, double* ends) const {
+  ends[0] = ends[1] = kAgrees;
+  const int a = dir_.axis;
+  int first = 0, count = 0;
+  columnStraddle(f0, f1, box_.lo[a], box_.hi[a], up, first, count);
+  if (!threeWay_ || count == 0) return;
+  const double lo = box_.lo[a], hi = box_.hi[a];
+  const auto value = [&](int i) { return up ? first + i - lo : hi - (first + i); };
+  // profileIntegral's walk: by level from the first column's height, positions kept
+  // from going back; a run of points at 0 leads, the first point at 1 ends the slope.
+  // "At" an end is within kAtEnd: a crossing on a grid vertex is stored a bit off it
+  // (on the solid side), and a surface a rounding error off a vertex is on it.
+  constexpr double kAtEnd = 1e-6;
+  const bool reversed = count > 1 && (value(0) > value(count - 1)) != (len0 > len1);
+  double run = 0.0;
+  double end0 = len0;
+  for (int k = 0; k < count; ++k) {
+    const int i = reversed ? count - 1 - k : k;
+    run = std::max(run, std::clamp(crossings[i] - edgeStart, 0.0, 1.0));
+    if (run <= kAtEnd) end0 = value(i);
+    if (run >= 1.0 - kAtEnd) {
+      if (value(i) != len1) ends[1] = value(i);
+      break;
+    }
+  }
+  if (end0 != len0) ends[0] = end0;
+}
+
+void ThreeMap::cornerScratch(int nu, int nv, double*& endsU, double*& endsV) {
+  thread_local std::vector<double> u, v;  // [row][edge][end]
+  u.resize(static_cast<std::size_t>(nv + 1) * nu * 2);
+  v.resize(static_cast<std::size_t>(nu + 1) * nv * 2);
+  endsU = u.data();
+  endsV = v.data();
+}
+
+double ThreeMap::cornerCorrection(int iu0, int iu1, int iv0, int iv1) const {
+  if (!threeWay_ || iu1 <= iu0 || iv1 <= iv0) return 0.0;
+  const int nu = iu1 - iu0, nv = iv1 - iv0;
+  double* endsU = nullptr;
+  double* endsV = nullptr;
+  cornerScratch(nu, nv, endsU, endsV);
+  thread_local std::vector<int> counts;
+  thread_local std::vector<std::uint8_t> ups;
+  thread_local std::vector<double> lengths;
+  const int lo = box_.lo[dir_.axis], hi = box_.hi[dir_.axis];
+  const auto rowEnds = [&](int family, int r, int e0, int e1, double* ends) {
+    counts.resize(e1 + 1);
+    ups.resize(e1 + 1);
+    lengths.resize(e1 + 1);
+    rowColumns(family, r, e1 + 1, lengths.data(), ups.data(), counts.data());
+    const int base = box_.lo[family == 0 ? uAxis() : vAxis()];
+    const double* row = rows_[family][r].data();
+    std::size_t pos = 0;
+    for (int e = 0; e < e1; ++e) {
+      const int n = columnsStraddle(counts[e], ups[e], counts[e + 1], ups[e + 1], lo, hi).total();
+      if (e >= e0) {
+        double* out = ends + 2 * (e - e0);
+        if (ups[e] != ups[e + 1] || n == 0)
+          out[0] = out[1] = kAgrees;
+        else
+          profileEnds(counts[e], counts[e + 1], lengthOf(lengths[e], ups[e] != 0),
+                      lengthOf(lengths[e + 1], ups[e + 1] != 0), base + e, row + pos, ups[e] != 0,
+                      out);
+      }
+      pos += static_cast<std::size_t>(n);
+    }
+  };
+  for (int iv = iv0; iv <= iv1; ++iv) rowEnds(0, iv, iu0, iu1, endsU + 2 * nu * (iv - iv0));
+  for (int iu = iu0; iu <= iu1; ++iu) rowEnds(1, iu, iv0, iv1, endsV + 2 * nv * (iu - iu0));
+  return cornerSum(iu0, iu1, iv0, iv1, endsU, endsV);
+}
+
+double ThreeMap::cornerSum(int iu0, int iu1, int iv0, int iv1, const double* endsU,
+                           const double* endsV) const {
+  const int nu = iu1 - iu0, nv = iv1 - iv0;
+  // Ends of the u edge of row iv starting at column iu (end 0 at iu, 1 at iu + 1).
+  const auto uEnd = [&](int iu, int iv, int end) {
+    return endsU[2 * nu * (iv - iv0) + 2 * (iu - iu0) + end];
+  };
+  const auto vEnd = [&](int iu, int iv, int end) {
+    return endsV[2 * nv * (iu - iu0) + 2 * (iv - iv0) + end];
+  };
+  double sum = 0.0;
+  const auto corner = [&](int iu, int iv, double eu, double ev) {
+    if (std::isnan(eu) || std::isnan(ev)) return;  // an edge agrees with the column
+    sum += 0.25 * (columnLengthAt(iu, iv) - 0.5 * (eu + ev));
+  };
+  for (int iv = iv0; iv < iv1; ++iv)
+    for (int iu = iu0; iu < iu1; ++iu) {
+      corner(iu, iv, uEnd(iu, iv, 0), vEnd(iu, iv, 0));
+      corner(iu + 1, iv, uEnd(iu, iv, 1), vEnd(iu + 1, iv, 0));
+      corner(iu, iv + 1, uEnd(iu, iv + 1, 0), vEnd(iu, iv, 1));
+      corner(iu + 1, iv + 1, uEnd(iu, iv + 1, 1), vEnd(iu + 1, iv, 1));
     }
   return sum;
 }

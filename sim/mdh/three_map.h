@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "sim/mdh/column_tiles.h"
@@ -236,6 +237,15 @@ class ThreeMap {
   double volume() const { return squaresVolume(0, nu_ - 1, 0, nv_ - 1); }
   // The same over the squares whose corners lie in columns [iu0, iu1] x [iv0, iv1].
   double squaresVolume(int iu0, int iu1, int iv0, int iv1) const;
+  // The part of squaresVolume that reads a corner where a surface passes exactly
+  // through the column (a tool tangent to the grid line, a pocket's corner on it):
+  // the column is lowered, but the profiles of both of a square's edges leaving it
+  // jump at once back to their crossings, and the Coons patch would bulge by a
+  // quarter of the drop (a tool tangent to a face added material). Such a corner
+  // is read at the mean of the two profiles' ends instead; a corner that agrees
+  // with either edge (a wall on a grid plane) keeps its column, which keeps the
+  // patch exact there.
+  double cornerCorrection(int iu0, int iu1, int iv0, int iv1) const;
   // The integral of one edge's profile: between columns of heights h0 and h1,
   // the edge starting at grid coordinate edgeStart, with its straddle(h0, h1)
   // embedded crossings at `crossings` (ignored in a plain heightmap).
@@ -276,6 +286,17 @@ class ThreeMap {
   }
   double profileIntegral(int f0, int f1, double len0, double len1, int edgeStart,
                          const double* crossings, bool up) const;
+  // The profile's values just inside its ends (at 0+ and 1-) into ends[0], ends[1],
+  // kAgrees where that is the column's own length (no crossing on that end).
+  void profileEnds(int f0, int f1, double len0, double len1, int edgeStart, const double* crossings,
+                   bool up, double* ends) const;
+  static constexpr double kAgrees = std::numeric_limits<double>::quiet_NaN();
+  // Per-thread room for the ends of the edges of nu x nv squares (row by row, two per
+  // edge: the u edges' rows then the v edges').
+  static void cornerScratch(int nu, int nv, double*& endsU, double*& endsV);
+  // The correction from the ends of every edge of the squares in [iu0, iu1] x [iv0, iv1].
+  double cornerSum(int iu0, int iu1, int iv0, int iv1, const double* endsU,
+                   const double* endsV) const;
   double mixedEdgeIntegral(int f0, int f1, double len0, double len1, bool up0, int edgeStart,
                            const double* crossings) const;
 

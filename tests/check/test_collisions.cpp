@@ -336,6 +336,29 @@ TEST(Collisions, DrilledHolesRemoveTheirVolume) {
   }
 }
 
+// Passes whose cutter runs exactly tangent to the stock's sides (X-3 and Y43 with a
+// 6 mm end mill: CAM's usual finishing pass on a stock cut to size) remove nothing.
+// The line where a plunge touches a side lies on the tool's surface, so its column
+// dropped while every row beside it kept its solid, and the volume grew by a quarter
+// of the drop per square: `removed_volume_mm3` read -0.4 at density 5 and -0.1 at 10
+// until session 23. (Two tangent passes meeting at the stock's corner still read
+// 0.1 mm3 removed at density 5, and so do flutes ending exactly at the stock's top
+// along a tangent side: two tangent planes meeting on a grid line; docs/engine.md.)
+TEST(Collisions, AToolTangentToTheStocksSidesRemovesNothing) {
+  for (const double density : {5.0, 10.0}) {
+    Rig s;
+    s.options.density = density;
+    s.tools.push_back(flatTool());
+    s.tools.back().flute_length = 20;  // the flutes' top stays above the stock
+    const Report r = run(std::move(s), std::string(kStart) +
+                                           "M3 S9000\nG0 X-3 Y20 Z5\nG1 Z-10 F300\nG1 Y35\n"
+                                           "G0 Z5\nG0 X20 Y43\nG1 Z-10\nG1 X30\nG0 Z5\nM5\nM30\n");
+    EXPECT_NEAR(r.stats.removed_volume_mm3, 0.0, 1e-9) << density << " points/mm";
+    EXPECT_NEAR(r.stats.final_volume_mm3, 40.0 * 40 * 20, 1e-9) << density << " points/mm";
+    EXPECT_EQ(r.status, Status::kClean);
+  }
+}
+
 // No contact of a part narrower than twice the contact tolerance could be reported
 // (nothing lies deeper in it than its radius): its first motion is an error, not a
 // "clean" run. A tool in the table that the program never uses blocks nothing.

@@ -61,12 +61,13 @@ TEST(StockCut, RejectsBadBoxesAndDensities) {
 }
 
 TEST(StockCut, GridAlignedPocketRemovesExactlyItsColumns) {
-  for (int brick : {0, 32}) {
+  for (int brick : {64, 32}) {
     Stock s(kStock, options(brick));
     const CutResult r = s.cut(BoxSolid({2, 2, 4}, {5, 6, 7}), {0, 0, 1});
-    // The walls lie on grid planes and the 3-map holds their crossings, so
-    // only the four pocket corners' squares are approximate (5 grid units^3 each).
-    EXPECT_NEAR(r.removed_volume, 24.0, 4 * 0.005 + 1e-9);
+    // The walls lie on grid planes and the 3-map holds their crossings: exact. The
+    // squares outside the pocket's four corners were 5 grid units^3 short each
+    // (24 - 0.02) until their corner columns were read off their edges' profiles.
+    EXPECT_NEAR(r.removed_volume, 24.0, 1e-9);
     EXPECT_NEAR(s.volume(), 480.0 - r.removed_volume, 1e-9);
     EXPECT_TRUE(r.touched);
     EXPECT_FALSE(r.overhang);
@@ -85,6 +86,35 @@ TEST(StockCut, GridAlignedPocketRemovesExactlyItsColumns) {
     EXPECT_TRUE(s.isSolid({3.5, 4, 3.9}));
     EXPECT_NO_THROW(s.checkInvariants());
   }
+}
+
+// A tool tangent to a face on a grid line lowers that line's column (the line lies
+// on the tool's surface) while every row beside it keeps its solid: the volume
+// must not grow (it grew by a quarter of the drop per square: a 6 mm end mill run
+// down a stock's side at density 5 "removed" -0.2 mm^3 in `mdhd check`).
+TEST(StockCut, AToolTangentToAFaceRemovesNothing) {
+  const geom::Aabb stock{{0, 0, -20}, {40, 30, 0}};
+  for (int brick : {64, 32})
+    for (int threads : {1, 2}) {
+      StockOptions o;
+      o.density = 5;
+      o.brick = brick;
+      o.threads = threads;
+      Stock s(stock, o);
+      double removed =
+          s.cut(CylinderSolid({-3, 20, -10}, {0, 0, 1}, 3, 60), {0, 0, 1}).removed_volume;
+      removed +=
+          s.cut(testing::CapsuleSolid({-3, 20, -10}, {-3, 28, -10}, 3), {0, 0, 1}).removed_volume;
+      removed += s.cut(SphereSolid({20, 33, -10}, 3), {0, 0, 1}).removed_volume;  // the +y face
+      SCOPED_TRACE(::testing::Message() << "brick " << brick << " threads " << threads);
+      EXPECT_NEAR(s.volume(), 24000.0, 1e-9 * 24000.0);
+      EXPECT_NEAR(removed, 0.0, 1e-9 * 24000.0);  // each step's change agrees
+      if (brick == 32 && threads == 1) {          // the check takes seconds
+        EXPECT_NO_THROW(s.checkInvariants());
+      }
+      // The tangent line itself is on the surface; a grid step inside is solid.
+      EXPECT_TRUE(s.isSolid({0.25, 20, -5}));
+    }
 }
 
 TEST(StockCut, SphereFromTheTopRemovesAHemisphere) {
