@@ -22,6 +22,11 @@ struct EpisodeKey {
   // 1's, at its line, until session 23). Axis limits keep 0: a joint's overtravel is
   // the machine's, whichever tool is in the spindle.
   int tool = 0;
+  // Axis limits: the side beyond which the joint is (+1 max, -1 min; 0 for contacts).
+  // A move from below a joint's min to beyond its max ends the min episode and opens a
+  // max one: until session 23 both were one episode, reported at the min side's line
+  // with the max side's depth, and the max overtravel was never named.
+  int side = 0;
   auto operator<=>(const EpisodeKey&) const = default;
 };
 

@@ -284,9 +284,9 @@ void Simulation::event(const gcode::Event& e) {
 void Simulation::checkLimits(const gcode::Motion& m, const kin::JointPath& path) {
   // Every joint beyond its range is its own episode: until session 22 only the one that
   // left first was looked at, so a second joint's overtravel in the same move was
-  // missed or reported at a later line.
+  // missed or reported at a later line. Each side of a joint is its own episode too.
   for (const kin::LimitViolation& v : kin::checkLimitsAll(path)) {
-    const EpisodeKey key{CollisionType::kAxisLimit, ToolPartName::kNone, -1, v.joint};
+    const EpisodeKey key{CollisionType::kAxisLimit, ToolPartName::kNone, -1, v.joint, 0, v.side};
     episodes_.touch(key, v.excess, m.pos.line, [&] {
       Collision c;
       c.type = CollisionType::kAxisLimit;
@@ -300,7 +300,8 @@ void Simulation::checkLimits(const gcode::Motion& m, const kin::JointPath& path)
       c.axis = kin_.machine().joints[static_cast<std::size_t>(v.joint)].name;
       return c;
     });
-    // Back inside at the move's end: a later overtravel is a new episode.
+    // Back inside (or beyond the other side) at the move's end: a later overtravel of
+    // this side is a new episode.
     if (!v.outside_at_end) episodes_.close(key);
   }
   episodes_.endStep(true);

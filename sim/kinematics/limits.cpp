@@ -34,22 +34,25 @@ LimitViolation make(int joint, gcode::Axis axis, const Limits& l, int dir, doubl
   out.limit = dir > 0 ? l.max : l.min;
   out.value = v;
   out.excess = std::abs(v - out.limit);
+  out.side = dir;
   return out;
 }
 
-// A joint that moves linearly from a to b: exact.
-std::optional<LimitViolation> linearCheck(int joint, gcode::Axis axis, const Limits& l, double a,
-                                          double b) {
+// A joint that moves linearly from a to b: exact. One entry per side it is beyond:
+// two when it goes from below its min to beyond its max (or back) in one move.
+void linearCheck(int joint, gcode::Axis axis, const Limits& l, double a, double b,
+                 std::vector<LimitViolation>& out) {
   const int dirA = side(l, a);
   const int dirB = side(l, b);
-  if (dirA == 0 && dirB == 0) return std::nullopt;
-  const int dir = dirA != 0 ? dirA : dirB;
-  // The worst is the end farther out on that side.
-  const bool endWorse = dir > 0 ? b > a : b < a;
-  LimitViolation out = make(joint, axis, l, dir, endWorse ? b : a);
-  out.worst_s = endWorse ? 1.0 : 0.0;
-  out.first_s = dirA != 0 ? 0.0 : std::clamp((out.limit - a) / (b - a), 0.0, 1.0);
-  return out;
+  for (const int dir : {dirA, dirB != dirA ? dirB : 0}) {
+    if (dir == 0) continue;
+    // The worst is the end farther out on that side.
+    const bool endWorse = dir > 0 ? b > a : b < a;
+    LimitViolation v = make(joint, axis, l, dir, endWorse ? b : a);
+    v.worst_s = endWorse ? 1.0 : 0.0;
+    v.first_s = dirA == dir ? 0.0 : std::clamp((v.limit - a) / (b - a), 0.0, 1.0);
+    out.push_back(v);
+  }
 }
 
 // Golden-section search for the maximum of f on [a, b] (assumed unimodal there).
@@ -104,10 +107,11 @@ std::vector<double> sampleParameters(const JointPath& path) {
   return s;
 }
 
-// One joint, sampled: refine every local extreme, then find the first point outside.
-std::optional<LimitViolation> sampledCheck(const JointPath& path, int joint, gcode::Axis axis,
-                                           const Limits& l, const std::vector<double>& s,
-                                           const std::vector<double>& v) {
+// One joint, sampled: refine every local extreme, then for each side find the first
+// point beyond it and the farthest one (one entry per side, the side reached first first).
+void sampledCheck(const JointPath& path, int joint, gcode::Axis axis, const Limits& l,
+                  const std::vector<double>& s, const std::vector<double>& v,
+                  std::vector<LimitViolation>& out) {
   const auto f = [&](double t) { return path.at(t)[axis]; };
   std::vector<Point> pts;
   pts.reserve(s.size() + 16);
@@ -133,27 +137,32 @@ std::optional<LimitViolation> sampledCheck(const JointPath& path, int joint, gco
     }
   }
   std::sort(pts.begin(), pts.end(), [](const Point& x, const Point& y) { return x.s < y.s; });
-  std::size_t k = 0;
-  while (k < pts.size() && side(l, pts[k].v) == 0) ++k;
-  if (k == pts.size()) return std::nullopt;
-  const int dir = side(l, pts[k].v);
-  LimitViolation out = make(joint, axis, l, dir, pts[k].v);
-  out.worst_s = pts[k].s;
-  for (const Point& p : pts) {
-    if (dir * (p.v - out.value) > 0) out.value = p.v, out.worst_s = p.s;
-  }
-  out.excess = std::abs(out.value - out.limit);
-  if (k > 0) {
-    // Bisect for the crossing between the last point inside and the first outside.
-    double lo = pts[k - 1].s;
-    double hi = pts[k].s;
-    for (int i = 0; i < kRefineIterations && hi - lo > 1e-15; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (side(l, f(mid)) == dir ? hi : lo) = mid;
+  std::vector<LimitViolation> sides;
+  for (const int dir : {1, -1}) {
+    std::size_t k = 0;
+    while (k < pts.size() && side(l, pts[k].v) != dir) ++k;
+    if (k == pts.size()) continue;
+    LimitViolation o = make(joint, axis, l, dir, pts[k].v);
+    o.worst_s = pts[k].s;
+    for (const Point& p : pts) {
+      if (side(l, p.v) == dir && dir * (p.v - o.value) > 0) o.value = p.v, o.worst_s = p.s;
     }
-    out.first_s = hi;
+    o.excess = std::abs(o.value - o.limit);
+    if (k > 0) {
+      // Bisect for the crossing between the last point not beyond this side and the first
+      // beyond it.
+      double lo = pts[k - 1].s;
+      double hi = pts[k].s;
+      for (int i = 0; i < kRefineIterations && hi - lo > 1e-15; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (side(l, f(mid)) == dir ? hi : lo) = mid;
+      }
+      o.first_s = hi;
+    }
+    sides.push_back(o);
   }
-  return out;
+  if (sides.size() == 2 && sides[1].first_s < sides[0].first_s) std::swap(sides[0], sides[1]);
+  out.insert(out.end(), sides.begin(), sides.end());
 }
 
 }  // namespace
@@ -180,10 +189,10 @@ std::vector<LimitViolation> checkLimitsAll(const JointPath& path) {
     const Limits& l = *m.joints[j].limits;
     const bool solved = path.tcp() && axis <= gcode::kZ;
     const bool onArc = path.isArc() && (axis == path.arcFirst() || axis == path.arcSecond());
-    std::optional<LimitViolation> v;
+    const std::size_t first = out.size();
     if (!solved && !onArc) {
-      v = linearCheck(static_cast<int>(j), axis, l, path.startJoints()[axis],
-                      path.endJoints()[axis]);
+      linearCheck(static_cast<int>(j), axis, l, path.startJoints()[axis], path.endJoints()[axis],
+                  out);
     } else {
       if (s.empty()) {
         s = sampleParameters(path);
@@ -192,13 +201,14 @@ std::vector<LimitViolation> checkLimitsAll(const JointPath& path) {
       }
       std::vector<double> values(s.size());
       for (std::size_t i = 0; i < s.size(); ++i) values[i] = q[i][axis];
-      v = sampledCheck(path, static_cast<int>(j), axis, l, s, values);
+      sampledCheck(path, static_cast<int>(j), axis, l, s, values, out);
     }
-    if (!v) continue;
-    v->outside_at_end = side(l, path.endJoints()[axis]) != 0;
-    out.push_back(*v);
+    // Still beyond that same side at the end: a joint that crossed to the other side
+    // has left the first one.
+    const int endSide = side(l, path.endJoints()[axis]);
+    for (std::size_t i = first; i < out.size(); ++i) out[i].outside_at_end = endSide == out[i].side;
   }
-  // Machine order within equal first_s: the sort is stable.
+  // Machine order (then the side reached first) within equal first_s: the sort is stable.
   std::stable_sort(out.begin(), out.end(), [](const LimitViolation& a, const LimitViolation& b) {
     return a.first_s < b.first_s;
   });

@@ -457,6 +457,39 @@ TEST(Collisions, AxisLimitEpisodesAndHowFarBeyond) {
   EXPECT_EQ(r.collisions.size(), 2u);
 }
 
+// A joint that goes from below its min to beyond its max in one move leaves one
+// overtravel and starts another: each side is its own episode, with its own line,
+// depth and place. Until session 23 the side was not part of the episode: lines 4-8
+// were one entry at line 4, 50 deep (line 5's), at X-400, and the +X overtravel of line
+// 5 and the -X one of line 7 were never named.
+TEST(Collisions, AxisLimitFromOneSideToTheOtherIsTwoEpisodes) {
+  Rig s;
+  s.options.density = 2;
+  const Report r = run(std::move(s),
+                       "G21 G90\nT1 M6\nG43 H1\n"
+                       "G0 X-410\n"  // 4: X min is -400: 10 below
+                       "G0 X450\n"   // 5: from 10 below min to 50 beyond max
+                       "G0 X420\n"   // 6: still beyond max
+                       "G0 X-430\n"  // 7: from beyond max to 30 below min
+                       "G0 X0\n"     // 8: back inside
+                       "M30\n");
+  const auto lim = ofType(r, CollisionType::kAxisLimit);
+  ASSERT_EQ(lim.size(), 3u);
+  auto at = [&](std::size_t i, int line, int last, const char* block, double depth, double x) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(lim[i]->line, line);
+    EXPECT_EQ(lim[i]->last_line, last);
+    EXPECT_EQ(lim[i]->block, block);
+    EXPECT_EQ(lim[i]->axis, "X");
+    EXPECT_NEAR(lim[i]->depth, depth, 1e-9);
+    EXPECT_NEAR(lim[i]->joints[gcode::kX], x, 1e-6);  // where it first leaves that side
+  };
+  at(0, 4, 5, "G0 X-410", 10, -400);
+  at(1, 5, 7, "G0 X450", 50, 400);
+  at(2, 7, 8, "G0 X-430", 30, -400);
+  EXPECT_EQ(r.collisions.size(), 3u);
+}
+
 // A move to X 1e300 (300 digits) is an overtravel of about 1e300 mm on a path about as
 // long: the tip's chord was measured through its squares, which overflow beyond ~1e154,
 // and the path length was infinite (0 in the report) until session 23.

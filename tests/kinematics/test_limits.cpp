@@ -113,6 +113,53 @@ TEST(Limits, AllListsEveryJointThatLeaves) {
   EXPECT_EQ(checkLimits(p)->axis, gcode::kX);  // the earliest
 }
 
+// From below a joint's min to beyond its max: one entry per side, the min side left at
+// once (not outside at the end), the max side with its own crossing and excess. Until
+// session 23 this was one entry (the min side) and the max overtravel was lost.
+TEST(Limits, AllListsBothSidesOfAJointThatCrosses) {
+  const Kinematics kin(exampleMill());  // X -50..550
+  const auto all = checkLimitsAll(JointPath(kin, move(xyz(-60, 0, 0), xyz(600, 0, 0)), 0));
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].axis, gcode::kX);
+  EXPECT_EQ(all[0].side, -1);
+  EXPECT_EQ(all[0].limit, -50);
+  EXPECT_EQ(all[0].value, -60);
+  EXPECT_EQ(all[0].excess, 10);
+  EXPECT_EQ(all[0].first_s, 0);
+  EXPECT_FALSE(all[0].outside_at_end);
+  EXPECT_EQ(all[1].axis, gcode::kX);
+  EXPECT_EQ(all[1].side, 1);
+  EXPECT_EQ(all[1].limit, 550);
+  EXPECT_EQ(all[1].value, 600);
+  EXPECT_EQ(all[1].excess, 50);
+  EXPECT_DOUBLE_EQ(all[1].first_s, 610.0 / 660);
+  EXPECT_EQ(all[1].worst_s, 1);
+  EXPECT_TRUE(all[1].outside_at_end);
+  // Staying beyond one side is one entry, still outside at the end.
+  const auto same = checkLimitsAll(JointPath(kin, move(xyz(600, 0, 0), xyz(560, 0, 0)), 0));
+  ASSERT_EQ(same.size(), 1u);
+  EXPECT_EQ(same[0].side, 1);
+  EXPECT_EQ(same[0].excess, 50);
+  EXPECT_TRUE(same[0].outside_at_end);
+
+  // An arc (sampled) from X-55 over the top to X555 about (250, 100): both sides again.
+  gcode::Motion m = move(xyz(-55, 100, 0), xyz(555, 100, 0));
+  m.type = gcode::MotionType::kArc;
+  m.center = {250, 100};
+  m.turn = -1;
+  const auto arc = checkLimitsAll(JointPath(kin, m, 0));
+  ASSERT_EQ(arc.size(), 2u);
+  EXPECT_EQ(arc[0].side, -1);
+  EXPECT_NEAR(arc[0].excess, 5, 1e-9);
+  EXPECT_EQ(arc[0].first_s, 0);
+  EXPECT_FALSE(arc[0].outside_at_end);
+  EXPECT_EQ(arc[1].side, 1);
+  EXPECT_NEAR(arc[1].excess, 5, 1e-9);
+  // X = 250 + 305 cos(pi (1 - s)) reaches 550 where cos = 300 / 305.
+  EXPECT_NEAR(arc[1].first_s, 1 - std::acos(300.0 / 305) / std::numbers::pi, 1e-9);
+  EXPECT_TRUE(arc[1].outside_at_end);
+}
+
 TEST(Limits, ArcThatExceedsOnlyInItsMiddle) {
   const Kinematics kin(exampleMill());
   // G2 from (90, 445) to (110, 445) about (100, 445): clockwise over the top, through
