@@ -4,6 +4,7 @@
 
 #include "daemon/check_runner.h"
 #include "daemon/http_errors.h"
+#include "daemon/number_text.h"
 #include "daemon/openapi_parts.h"
 #include "protocol/machine_json.h"
 
@@ -96,11 +97,11 @@ void streamEvents(const httplib::Request& req, httplib::Response& res,
   std::uint64_t after = s->events().lastId();
   std::string first = "retry: 1000\n";
   if (req.has_header("Last-Event-ID")) {
-    try {
-      after = std::min<std::uint64_t>(std::stoull(req.get_header_value("Last-Event-ID")), after);
-    } catch (const std::exception&) {
-      throw HttpError(400, "bad_header", "Last-Event-ID: not an event id");
-    }
+    // Digits only: stoull read "1e3" as 1 (a resume from event 2) and "-5" as a huge id.
+    const std::optional<std::uint64_t> id =
+        decimalDigits(req.get_header_value("Last-Event-ID"), 19);
+    if (!id) throw HttpError(400, "bad_header", "Last-Event-ID: not an event id (digits only)");
+    after = std::min(*id, after);
   } else {
     first += "event: state\ndata: " +
              nlohmann::json({{"state", shadow::shadowStateName(s->state())}}).dump() + "\n\n";
