@@ -75,9 +75,10 @@ void checkFields(const std::vector<PlacedField>& fields, std::vector<ModbusMapIs
     const RegisterField& prev = *sorted[i - 1]->field;
     const RegisterField& cur = *sorted[i]->field;
     if (cur.address < prev.address + registerCount(prev.type)) {
-      issues.push_back(
-          {sorted[i]->path + ".address",
-           registers(cur) + " overlap " + sorted[i - 1]->path + " (" + registers(prev) + ")"});
+      issues.push_back({sorted[i]->path + ".address",
+                        registers(cur) +
+                            (registerCount(cur.type) == 1 ? " overlaps " : " overlap ") +
+                            sorted[i - 1]->path + " (" + registers(prev) + ")"});
     }
   }
 }

@@ -326,6 +326,11 @@ TEST(ModbusMapValidation, OverlapsAndAddressRange) {
   map.line = at(3, RegisterType::kUint32);
   EXPECT_THAT(issueFields(map), ::testing::ElementsAre(HasSubstr("line.address: registers 3..4 "
                                                                  "overlap joints.Y")));
+  map.tool = at(3, RegisterType::kUint16);  // one register: "overlaps"
+  map.line->address = 5;
+  EXPECT_THAT(issueFields(map), ::testing::ElementsAre("tool.address: register 3 overlaps "
+                                                       "joints.Y (registers 2..3)"));
+  map.tool.reset();
   map.line->address = 4;
   map.line->scale = 0.0;
   EXPECT_THAT(issueFields(map), ::testing::ElementsAre(HasSubstr("line.scale")));
